@@ -1,0 +1,31 @@
+// imucal: field calibration of consumer MEMS IMUs (simulate, calibrate, Monte Carlo study, bound).
+#include <cstdio>
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "imucal/io/errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"imucal: calibrate a MEMS IMU by hand with an error-state Kalman filter"};
+  app.require_subcommand(1);
+  imucal::cli::addSimulateCommand(app);
+  imucal::cli::addCalibrateCommand(app);
+  imucal::cli::addMonteCarloCommand(app);
+  imucal::cli::addBoundCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const imucal::io::InputError& e) {
+    std::cerr << "imucal: input error: " << e.what() << '\n';
+    return 2;
+  } catch (const imucal::io::OutputError& e) {
+    std::cerr << "imucal: output error: " << e.what() << '\n';
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "imucal: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

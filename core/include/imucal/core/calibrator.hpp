@@ -1,0 +1,53 @@
+#pragma once
+// The calibration engine: runs the error-state filter over recorded IMU and heading samples (possibly
+// several passes, each re-linearized about the previous one) and reports estimates, 1-sigma, history and
+// convergence. Knows nothing about files or middleware.
+#include <string>
+#include <vector>
+
+#include "imucal/core/filter_config.hpp"
+#include "imucal/core/state_layout.hpp"
+#include "imucal/core/types.hpp"
+
+namespace imucal {
+
+// One IMU epoch of the final pass.
+struct EpochRecord {
+  double t = 0.0;
+  VecX params;   // calibration parameters (accel bias, gyro bias, optional scale factors), SI
+  VecX sigmas;   // their 1-sigma
+  Vec3 euler = Vec3::Zero();  // roll, pitch, yaw, rad
+  Vec3 velocity = Vec3::Zero();
+  Vec3 position = Vec3::Zero();
+  bool still = false;         // static detector's verdict
+};
+
+struct MeasurementStats {
+  long zero_velocity_updates = 0;
+  long position_updates = 0;
+  long heading_updates = 0;
+  long heading_rejected = 0;      // failed the innovation gate
+  double heading_nis_mean = 0.0;  // mean normalized innovation squared (1 when consistent)
+  double velocity_nis_mean = 0.0; // per component
+};
+
+struct CalibrationResult {
+  StateLayout layout;
+  std::vector<std::string> names;  // parameter names in state order
+  VecX estimate;                   // SI
+  VecX sigma;                      // 1-sigma, SI
+  VecX prior_sigma;                // 1-sigma before any data
+  std::vector<bool> converged;     // sigma well below the prior and the estimate settled
+  VecX convergence_time;           // s from the first sample; NaN where not converged
+  std::vector<EpochRecord> history;
+  MeasurementStats stats;
+  int passes_run = 0;
+  double duration = 0.0;
+};
+
+// Throws std::invalid_argument with a clear message on unusable input (too few samples, not finite,
+// time not increasing); sample-level checks with file and line happen in io/ before this.
+CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                            const FilterConfig& config);
+
+}  // namespace imucal

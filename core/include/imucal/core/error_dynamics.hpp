@@ -1,0 +1,60 @@
+#pragma once
+// The linearized error model, shared by the filter (linearized at its estimate) and the information
+// bound (linearized at the truth), so both are one model.
+//
+// Error state: dp, dv (NED), phi (attitude error in NED, C_true = (I + [phi x]) C_est), accel bias, gyro
+// bias, then the optional blocks of StateLayout. Errors are true minus estimated.
+#include <Eigen/Core>
+
+#include "imucal/core/filter_config.hpp"
+#include "imucal/core/state_layout.hpp"
+#include "imucal/core/types.hpp"
+
+namespace imucal {
+
+constexpr int kMaxStates = 27;
+using StateVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxStates, 1>;
+using StateMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxStates, kMaxStates>;
+
+// Where the error model is linearized for one step.
+struct Linearization {
+  Mat3 c_bn = Mat3::Identity();   // body to navigation
+  Vec3 f_b = Vec3::Zero();        // corrected specific force, body
+  Vec3 w_b = Vec3::Zero();        // corrected inertial rate, body
+};
+
+class ErrorDynamics {
+ public:
+  ErrorDynamics(const StateLayout& layout, const FilterConfig& config);
+
+  // P <- Phi P Phi^T + Q over dt with Phi = I + F dt (+ F^2 dt^2 / 2 in the products).
+  void propagate(StateMat& P, const Linearization& lin, double dt) const;
+
+  // out = F X for the block-sparse F at lin (X has layout.size rows).
+  void applyF(const Linearization& lin, const StateMat& X, StateMat& out) const;
+
+  // Dense F, for tests and the bound's cross-checks.
+  StateMat denseF(const Linearization& lin) const;
+
+  const StateLayout& layout() const { return layout_; }
+
+ private:
+  StateLayout layout_;
+  EarthModel earth_;
+  double q_vel_;   // accel white noise PSD
+  double q_att_;   // gyro white noise PSD
+  double q_ba_;    // accel bias random walk PSD
+  double q_bg_;
+};
+
+// Heading (yaw of C_bn) and its Jacobian row with respect to the error state (correct when tilted).
+double headingOf(const Mat3& c_bn);
+void headingJacobian(const Mat3& c_bn, const StateLayout& layout, StateVec& h);
+
+// Joseph-form update of P with one scalar measurement row h, noise variance r. Returns the gain K and
+// the innovation variance s. Symmetrizes P.
+void josephScalarUpdate(StateMat& P, const StateVec& h, double r, StateVec& K, double& s);
+// Same for a row selecting state index i (h = e_i); avoids the dense product.
+void josephSelectorUpdate(StateMat& P, int i, double r, StateVec& K, double& s);
+
+}  // namespace imucal

@@ -1,0 +1,70 @@
+#pragma once
+// Error-state Kalman filter on the loosely coupled INS model, with pseudo-observations in place of GNSS.
+// Measurements accumulate into the error state; correct() feeds it back into the nominal state and resets.
+#include "imucal/core/error_dynamics.hpp"
+#include "imucal/core/filter_config.hpp"
+#include "imucal/core/mechanization.hpp"
+#include "imucal/core/state_layout.hpp"
+
+namespace imucal {
+
+class Eskf {
+ public:
+  explicit Eskf(const FilterConfig& config);
+
+  // params: calibration parameters in state order (layout().paramCount() values, SI).
+  void initialize(const ImuSample& first_raw, const NavState& nav, const VecX& params, const StateMat& P0);
+  // Advances nominal state and covariance to raw.t (> time()).
+  void predict(const ImuSample& raw);
+
+  // Pseudo-observation: the device turns about its measurement centre, so its velocity is zero.
+  // Returns the sum of the three components' normalized innovation squared.
+  double updateZeroVelocity(double sigma);
+  // Pseudo-observation: the position stays at p_ref.
+  double updateConstantPosition(const Vec3& p_ref, double sigma);
+
+  struct HeadingOutcome {
+    bool accepted = false;
+    double innovation = 0.0;  // rad, wrapped
+    double nis = 0.0;
+  };
+  // Heading (rad, clockwise from north) with 1-sigma; gate_sigma > 0 rejects larger innovations.
+  HeadingOutcome updateHeading(double heading, double sigma, double gate_sigma = 0.0);
+
+  // Feeds the accumulated error state into the nominal state and resets it. Without feedback (see
+  // setFeedback) the error state is kept and propagated instead.
+  void correct();
+
+  // With feedback off the nominal trajectory is a fixed reference (dead reckoning from the previous
+  // pass's parameters) and the filter estimates the deviation from it: Jacobians then no longer follow
+  // the estimate, which stops noise from steering it along directions a still device cannot observe.
+  void setFeedback(bool on) { feedback_ = on; }
+  // Estimates: nominal state with the error state applied (equal to the nominal with feedback on).
+  VecX estimatedParams() const;
+  NavState estimatedNav() const;
+
+  double time() const { return last_raw_.t; }
+  const NavState& nav() const { return nav_; }
+  const VecX& params() const { return params_; }
+  const StateMat& covariance() const { return P_; }
+  const StateLayout& layout() const { return layout_; }
+  // The raw sample corrected with the current parameter estimates.
+  ImuSample corrected(const ImuSample& raw) const;
+
+ private:
+  void scalarSelector(int index, double innovation, double variance, double& nis);
+
+  FilterConfig config_;
+  StateLayout layout_;
+  ErrorDynamics dynamics_;
+  NavState nav_;
+  VecX params_;
+  StateMat P_;
+  StateVec dx_;
+  StateVec gain_;
+  StateVec h_;
+  ImuSample last_raw_;
+  bool feedback_ = true;
+};
+
+}  // namespace imucal

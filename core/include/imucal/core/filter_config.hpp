@@ -1,0 +1,64 @@
+#pragma once
+// Everything the filter needs to be told, SI inside. Human units are converted at the edges (io/).
+#include "imucal/core/earth.hpp"
+#include "imucal/core/state_layout.hpp"
+#include "imucal/core/types.hpp"
+
+namespace imucal {
+
+struct NoiseConfig {
+  double accel_white = 0.15 / 60.0;             // VRW, m/s/sqrt(s)
+  double gyro_white = 0.3 / 60.0 * 3.14159265358979323846 / 180.0;  // ARW, rad/sqrt(s)
+  double accel_bias_walk = 0.0;                 // m/s^2/sqrt(s)
+  double gyro_bias_walk = 0.0;                  // rad/s/sqrt(s)
+};
+
+struct PriorConfig {
+  double tilt = 5.0 * 3.14159265358979323846 / 180.0;  // rad, 1-sigma of roll/pitch after coarse alignment
+  double yaw = 3.14159265358979323846;                 // rad, when no heading is available at start
+  double accel_bias = 0.1 * 9.80665;                   // m/s^2
+  double gyro_bias = 1.0 * 3.14159265358979323846 / 180.0;  // rad/s
+  double accel_scale = 0.02;                           // fraction
+  double gyro_scale = 0.02;
+  double position = 1e-3;                              // m
+  double velocity = 1e-2;                              // m/s
+};
+
+struct MeasurementConfig {
+  bool zero_velocity = true;
+  double zero_velocity_sigma = 0.01;   // m/s
+  bool constant_position = true;
+  double constant_position_sigma = 0.01;  // m
+  bool heading = true;
+  double heading_sigma = 5.0 * 3.14159265358979323846 / 180.0;  // rad
+  double heading_latency = 0.0;        // s, subtracted from heading time stamps
+  // Heading innovations beyond this many sigma are rejected (a magnetometer near iron).
+  double heading_gate_sigma = 0.0;     // 0 = no gate
+};
+
+struct FilterConfig {
+  ModelOptions model;
+  NoiseConfig noise;
+  PriorConfig prior;
+  MeasurementConfig measurements;
+  EarthModel earth;
+  // On a reset, rotate the tilt errors by the full yaw correction (exact for a yaw change) instead of the
+  // first-order reset; keeps tilt/bias correlations right when heading corrections are large.
+  bool full_yaw_reset = true;
+  // Linearize the specific-force terms at the specific force the motion model predicts (minus gravity:
+  // the device turns about a fixed centre) instead of at the noisy measurement. Measured noise in F makes
+  // the vertical channel appear to observe tilt, and the estimate then wanders along the tilt /
+  // horizontal-bias direction that a still device cannot observe.
+  bool gravity_linearization = true;
+  // Passes over the data; each later pass starts from the previous estimates (re-linearization).
+  int passes = 3;
+  // Passes after the first run without feedback, about the trajectory dead-reckoned with the previous
+  // pass's parameters (a Gauss-Newton step), instead of as a fresh closed-loop filter.
+  bool open_loop_refinement = true;
+  // Seconds of data at the start used for coarse alignment (the device must be still then).
+  double alignment_time = 1.0;
+  // A parameter counts as converged when its sigma has fallen below this fraction of its prior sigma.
+  double converged_sigma_ratio = 0.2;
+};
+
+}  // namespace imucal

@@ -1,0 +1,27 @@
+#pragma once
+// Still/moving classification from the spread of accel and gyro over a centred window. Works on raw
+// samples: a constant bias does not change a spread.
+#include <vector>
+
+#include "imucal/core/types.hpp"
+
+namespace imucal {
+
+struct StaticDetectorConfig {
+  double window = 0.5;          // s
+  double gyro_std_max = 0.02;   // rad/s, per-axis standard deviation in the window (~1.1 deg/s)
+  double accel_std_max = 0.15;  // m/s^2
+  double min_still = 0.3;       // s; shorter still runs are called moving
+};
+
+std::vector<bool> detectStill(const std::vector<ImuSample>& imu, const StaticDetectorConfig& config = {});
+
+struct Segment {
+  double start = 0.0;
+  double end = 0.0;
+  bool still = false;
+};
+// Runs of equal verdicts as time intervals.
+std::vector<Segment> segmentsOf(const std::vector<ImuSample>& imu, const std::vector<bool>& still);
+
+}  // namespace imucal

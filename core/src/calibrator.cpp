@@ -1,0 +1,174 @@
+#include "imucal/core/calibrator.hpp"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "imucal/core/convergence.hpp"
+#include "imucal/core/eskf.hpp"
+#include "imucal/core/initial_alignment.hpp"
+#include "imucal/core/rotation.hpp"
+#include "imucal/core/static_detector.hpp"
+
+namespace imucal {
+
+namespace {
+
+void validate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading) {
+  if (imu.size() < 10) throw std::invalid_argument("calibrate: need at least 10 IMU samples, got " + std::to_string(imu.size()));
+  for (std::size_t i = 0; i < imu.size(); ++i) {
+    const auto& s = imu[i];
+    if (!std::isfinite(s.t) || !s.accel.allFinite() || !s.gyro.allFinite()) {
+      throw std::invalid_argument("calibrate: IMU sample " + std::to_string(i) + " is not finite");
+    }
+    if (i > 0 && !(s.t > imu[i - 1].t)) {
+      std::ostringstream msg;
+      msg << "calibrate: IMU time does not increase at sample " << i << " (" << s.t << " s after " << imu[i - 1].t << " s)";
+      throw std::invalid_argument(msg.str());
+    }
+  }
+  for (std::size_t i = 0; i < heading.size(); ++i) {
+    if (!std::isfinite(heading[i].t) || !std::isfinite(heading[i].heading)) {
+      throw std::invalid_argument("calibrate: heading sample " + std::to_string(i) + " is not finite");
+    }
+    if (i > 0 && !(heading[i].t > heading[i - 1].t)) {
+      throw std::invalid_argument("calibrate: heading time does not increase at sample " + std::to_string(i));
+    }
+  }
+}
+
+struct PassOutput {
+  VecX params;
+  StateMat P;
+  std::vector<EpochRecord> history;
+  MeasurementStats stats;
+};
+
+PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                   const std::vector<bool>& still, const FilterConfig& config, const VecX& params0, bool feedback) {
+  const auto& m = config.measurements;
+  Eskf filter(config);
+  const StateLayout& layout = filter.layout();
+  const bool use_heading = m.heading && !heading.empty();
+  const InitialAlignment init = alignInitialState(imu, use_heading ? heading : std::vector<HeadingSample>{},
+                                                  config, params0, layout);
+  filter.initialize(imu.front(), init.nav, params0, init.P0);
+  filter.setFeedback(feedback);
+
+  PassOutput out;
+  out.history.reserve(imu.size());
+  std::size_t h = init.first_unused_heading;
+  double heading_nis_sum = 0.0, velocity_nis_sum = 0.0;
+  const auto headingTime = [&](std::size_t i) { return heading[i].t - m.heading_latency; };
+  const auto applyHeading = [&](std::size_t i) {
+    const auto r = filter.updateHeading(heading[i].heading, m.heading_sigma, m.heading_gate_sigma);
+    if (r.accepted) {
+      ++out.stats.heading_updates;
+      heading_nis_sum += r.nis;
+    } else {
+      ++out.stats.heading_rejected;
+    }
+    filter.correct();
+  };
+  const auto record = [&](std::size_t k) {
+    EpochRecord e;
+    e.t = imu[k].t;
+    e.params = filter.estimatedParams();
+    e.sigmas = filter.covariance().diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+    const NavState nav = filter.estimatedNav();
+    e.euler = quatToEuler(nav.q_nb);
+    e.velocity = nav.v;
+    e.position = nav.p;
+    e.still = still[k];
+    out.history.push_back(std::move(e));
+  };
+  record(0);
+
+  for (std::size_t k = 1; k < imu.size(); ++k) {
+    // Heading samples strictly inside this IMU interval are applied at their own time.
+    while (use_heading && h < heading.size() && headingTime(h) < imu[k].t) {
+      const double th = headingTime(h);
+      if (th > filter.time()) {
+        filter.predict(interpolate(imu[k - 1], imu[k], th));
+        applyHeading(h);
+      }
+      ++h;
+    }
+    filter.predict(imu[k]);
+    if (m.zero_velocity) {
+      velocity_nis_sum += filter.updateZeroVelocity(m.zero_velocity_sigma);
+      ++out.stats.zero_velocity_updates;
+    }
+    if (m.constant_position) {
+      filter.updateConstantPosition(Vec3::Zero(), m.constant_position_sigma);
+      ++out.stats.position_updates;
+    }
+    filter.correct();
+    while (use_heading && h < heading.size() && headingTime(h) == imu[k].t) applyHeading(h++);
+    record(k);
+  }
+  if (out.stats.heading_updates > 0) out.stats.heading_nis_mean = heading_nis_sum / out.stats.heading_updates;
+  if (out.stats.zero_velocity_updates > 0) {
+    out.stats.velocity_nis_mean = velocity_nis_sum / (3.0 * out.stats.zero_velocity_updates);
+  }
+  out.params = filter.estimatedParams();
+  out.P = filter.covariance();
+  return out;
+}
+
+}  // namespace
+
+CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                            const FilterConfig& config) {
+  validate(imu, heading);
+  if (config.passes < 1) throw std::invalid_argument("calibrate: passes must be at least 1");
+  const StateLayout layout = StateLayout::make(config.model);
+  const std::vector<bool> still = detectStill(imu);
+
+  CalibrationResult result;
+  result.layout = layout;
+  result.names = layout.paramNames();
+  result.prior_sigma = priorCovariance(config, layout, 0.0).diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+
+  VecX params = VecX::Zero(layout.paramCount());
+  PassOutput pass;
+  for (int i = 0; i < config.passes; ++i) {
+    // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
+    // about the dead-reckoned trajectory of the previous pass's parameters.
+    const bool feedback = i == 0 || !config.open_loop_refinement;
+    pass = runPass(imu, heading, still, config, params, feedback);
+    const VecX sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+    const double change = ((pass.params - params).cwiseQuotient(sigma)).cwiseAbs().maxCoeff();
+    params = pass.params;
+    result.passes_run = i + 1;
+    // Later passes only re-linearize; once the estimates stop moving they add nothing.
+    if (i > 0 && change < 0.05) break;
+  }
+
+  result.estimate = pass.params;
+  result.sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+  result.stats = pass.stats;
+  result.history = std::move(pass.history);
+  result.duration = imu.back().t - imu.front().t;
+
+  const int n = layout.paramCount();
+  result.converged.assign(n, false);
+  result.convergence_time = VecX::Constant(n, std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> t, x, s;
+  for (const auto& e : result.history) t.push_back(e.t);
+  for (int j = 0; j < n; ++j) {
+    x.clear();
+    s.clear();
+    for (const auto& e : result.history) {
+      x.push_back(e.params(j));
+      s.push_back(e.sigmas(j));
+    }
+    if (result.sigma(j) > config.converged_sigma_ratio * result.prior_sigma(j)) continue;
+    result.converged[j] = true;
+    result.convergence_time(j) = selfConvergenceTime(t, x, s, 2.0 * result.sigma(j));
+  }
+  return result;
+}
+
+}  // namespace imucal

@@ -1,0 +1,139 @@
+#include "imucal/core/eskf.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "imucal/core/rotation.hpp"
+
+namespace imucal {
+
+Eskf::Eskf(const FilterConfig& config)
+    : config_(config), layout_(StateLayout::make(config.model)), dynamics_(layout_, config) {
+  params_ = VecX::Zero(layout_.paramCount());
+  P_ = StateMat::Identity(layout_.size, layout_.size);
+  dx_ = StateVec::Zero(layout_.size);
+}
+
+void Eskf::initialize(const ImuSample& first_raw, const NavState& nav, const VecX& params, const StateMat& P0) {
+  if (params.size() != layout_.paramCount()) throw std::invalid_argument("Eskf::initialize: wrong parameter count");
+  if (P0.rows() != layout_.size || P0.cols() != layout_.size) {
+    throw std::invalid_argument("Eskf::initialize: covariance size does not match the state layout");
+  }
+  last_raw_ = first_raw;
+  nav_ = nav;
+  params_ = params;
+  P_ = P0;
+  dx_.setZero(layout_.size);
+}
+
+ImuSample Eskf::corrected(const ImuSample& raw) const {
+  using L = StateLayout;
+  constexpr int p0 = L::kParamStart;
+  ImuSample s = raw;
+  s.accel = raw.accel - params_.segment<3>(L::kAccelBias - p0);
+  s.gyro = raw.gyro - params_.segment<3>(L::kGyroBias - p0);
+  if (layout_.accel_scale >= 0) {
+    s.accel = s.accel.cwiseQuotient((Vec3::Ones() + params_.segment<3>(layout_.accel_scale - p0)));
+  }
+  if (layout_.gyro_scale >= 0) {
+    s.gyro = s.gyro.cwiseQuotient((Vec3::Ones() + params_.segment<3>(layout_.gyro_scale - p0)));
+  }
+  return s;
+}
+
+void Eskf::predict(const ImuSample& raw) {
+  const double dt = raw.t - last_raw_.t;
+  if (!(dt > 0.0)) throw std::invalid_argument("Eskf::predict: time must increase");
+  const ImuSample a = corrected(last_raw_);
+  const ImuSample b = corrected(raw);
+  const Quat q0 = nav_.q_nb;
+  propagateNav(nav_, a, b, config_.earth);
+  Linearization lin;
+  lin.c_bn = q0.slerp(0.5, nav_.q_nb).toRotationMatrix();
+  lin.f_b = config_.gravity_linearization ? Vec3(-(lin.c_bn.transpose() * config_.earth.gravityNed()))
+                                          : Vec3(0.5 * (a.accel + b.accel));
+  lin.w_b = 0.5 * (a.gyro + b.gyro);
+  if (!feedback_) {
+    StateMat fdx;
+    const StateMat dx = dx_;
+    dynamics_.applyF(lin, dx, fdx);
+    dx_ += dt * fdx.col(0);
+  }
+  dynamics_.propagate(P_, lin, dt);
+  last_raw_ = raw;
+}
+
+void Eskf::scalarSelector(int index, double innovation, double variance, double& nis) {
+  double s = 0.0;
+  const double y = innovation - dx_(index);
+  josephSelectorUpdate(P_, index, variance, gain_, s);
+  dx_ += gain_ * y;
+  nis += y * y / s;
+}
+
+double Eskf::updateZeroVelocity(double sigma) {
+  double nis = 0.0;
+  for (int i = 0; i < 3; ++i) scalarSelector(StateLayout::kVel + i, -nav_.v(i), sigma * sigma, nis);
+  return nis;
+}
+
+double Eskf::updateConstantPosition(const Vec3& p_ref, double sigma) {
+  double nis = 0.0;
+  for (int i = 0; i < 3; ++i) scalarSelector(StateLayout::kPos + i, p_ref(i) - nav_.p(i), sigma * sigma, nis);
+  return nis;
+}
+
+Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double gate_sigma) {
+  HeadingOutcome out;
+  const Mat3 c = nav_.q_nb.toRotationMatrix();
+  headingJacobian(c, layout_, h_);
+  const double y = wrapAngle(heading - headingOf(c)) - h_.dot(dx_);
+  const double r = sigma * sigma;
+  const double s_pred = h_.dot(P_ * h_) + r;
+  out.innovation = y;
+  out.nis = y * y / s_pred;
+  if (gate_sigma > 0.0 && out.nis > gate_sigma * gate_sigma) return out;
+  double s = 0.0;
+  josephScalarUpdate(P_, h_, r, gain_, s);
+  dx_ += gain_ * y;
+  out.accepted = true;
+  return out;
+}
+
+VecX Eskf::estimatedParams() const { return params_ + dx_.segment(StateLayout::kParamStart, layout_.paramCount()); }
+
+NavState Eskf::estimatedNav() const {
+  using L = StateLayout;
+  NavState nav = nav_;
+  nav.p += dx_.segment<3>(L::kPos);
+  nav.v += dx_.segment<3>(L::kVel);
+  nav.q_nb = (rotationVectorToQuat(dx_.segment<3>(L::kAtt)) * nav_.q_nb).normalized();
+  return nav;
+}
+
+void Eskf::correct() {
+  if (!feedback_) return;
+  using L = StateLayout;
+  const Vec3 dphi = dx_.segment<3>(L::kAtt);
+  nav_.p += dx_.segment<3>(L::kPos);
+  nav_.v += dx_.segment<3>(L::kVel);
+  nav_.q_nb = (rotationVectorToQuat(dphi) * nav_.q_nb).normalized();
+  params_ += dx_.segment(L::kParamStart, layout_.paramCount());
+  dx_.setZero();
+
+  // Reset Jacobian of the attitude block. A yaw change of the estimate leaves the body's true and
+  // estimated verticals unchanged in body axes, so the tilt error expressed in NED turns with the full
+  // yaw correction; the first-order reset (I - [dphi/2 x]) turns it by half.
+  Mat3 g;
+  if (config_.full_yaw_reset) {
+    const double c = std::cos(dphi.z());
+    const double s = std::sin(dphi.z());
+    g << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
+  } else {
+    g = Mat3::Identity() - 0.5 * skew(dphi);
+  }
+  P_.middleRows<3>(L::kAtt) = (g * P_.middleRows<3>(L::kAtt)).eval();
+  P_.middleCols<3>(L::kAtt) = (P_.middleCols<3>(L::kAtt) * g.transpose()).eval();
+}
+
+}  // namespace imucal

@@ -1,0 +1,77 @@
+#include "imucal/core/information_bound.hpp"
+
+#include <stdexcept>
+
+#include "imucal/core/initial_alignment.hpp"
+
+namespace imucal {
+
+namespace {
+
+Linearization linearizeBetween(const TrajectoryPoint& a, const TrajectoryPoint& b) {
+  Linearization lin;
+  lin.c_bn = a.q_nb.slerp(0.5, b.q_nb).toRotationMatrix();
+  lin.f_b = 0.5 * (a.f_b + b.f_b);
+  lin.w_b = 0.5 * (a.w_b + b.w_b);
+  return lin;
+}
+
+}  // namespace
+
+BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std::vector<double>& heading_times,
+                             const FilterConfig& config) {
+  if (traj.size() < 2) throw std::invalid_argument("informationBound: need at least two trajectory points");
+  const StateLayout layout = StateLayout::make(config.model);
+  const ErrorDynamics dynamics(layout, config);
+  const auto& m = config.measurements;
+  const bool use_heading = m.heading && !heading_times.empty();
+
+  // Same start as the filter: heading samples inside the alignment window become the initial yaw.
+  const double t0 = traj.front().t;
+  std::size_t h = 0;
+  int folded = 0;
+  while (use_heading && h < heading_times.size() && heading_times[h] <= t0 + config.alignment_time) {
+    if (heading_times[h] >= t0) ++folded;
+    ++h;
+  }
+  const double yaw_var = folded > 0 ? m.heading_sigma * m.heading_sigma / folded : config.prior.yaw * config.prior.yaw;
+  StateMat P = priorCovariance(config, layout, yaw_var);
+
+  BoundResult out;
+  out.names = layout.paramNames();
+  StateVec K, hrow;
+  double s = 0.0;
+  const auto record = [&](double t) {
+    out.t.push_back(t);
+    out.sigma_history.push_back(P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt());
+  };
+  record(t0);
+  for (std::size_t k = 1; k < traj.size(); ++k) {
+    const Linearization lin = linearizeBetween(traj[k - 1], traj[k]);
+    double t = traj[k - 1].t;
+    while (use_heading && h < heading_times.size() && heading_times[h] <= traj[k].t) {
+      const double th = heading_times[h++];
+      if (th <= t) continue;
+      dynamics.propagate(P, lin, th - t);
+      t = th;
+      const double w = (th - traj[k - 1].t) / (traj[k].t - traj[k - 1].t);
+      headingJacobian(traj[k - 1].q_nb.slerp(w, traj[k].q_nb).toRotationMatrix(), layout, hrow);
+      josephScalarUpdate(P, hrow, m.heading_sigma * m.heading_sigma, K, s);
+    }
+    if (traj[k].t > t) dynamics.propagate(P, lin, traj[k].t - t);
+    if (m.zero_velocity) {
+      for (int i = 0; i < 3; ++i) josephSelectorUpdate(P, StateLayout::kVel + i, m.zero_velocity_sigma * m.zero_velocity_sigma, K, s);
+    }
+    if (m.constant_position) {
+      for (int i = 0; i < 3; ++i) {
+        josephSelectorUpdate(P, StateLayout::kPos + i, m.constant_position_sigma * m.constant_position_sigma, K, s);
+      }
+    }
+    record(traj[k].t);
+  }
+  out.covariance = P;
+  out.sigma = out.sigma_history.back();
+  return out;
+}
+
+}  // namespace imucal

@@ -1,0 +1,37 @@
+#pragma once
+// YAML configuration files: human units at the edges (deg, mg, ppm, deg/h, ...), SI inside. Unknown keys,
+// bad unit names and out-of-range values are errors naming file:line and the key.
+#include <string>
+
+#include "imucal/core/filter_config.hpp"
+#include "imucal/core/magnetometer_heading.hpp"
+#include "imucal/io/csv_format.hpp"
+#include "imucal/sim/simulator.hpp"
+
+namespace imucal::io {
+
+// Absent keys keep the sim structs' defaults; `motion` is required (a list of segments, or `paper`).
+sim::SimConfig loadSimConfig(const std::string& path);
+// Same, from text; `name` stands in for the file name in messages.
+sim::SimConfig parseSimConfig(const std::string& yaml, const std::string& name);
+
+// Everything `calibrate` needs besides the data: how to read the files and how to run the filter.
+struct CalibrateConfig {
+  ImuCsvFormat imu;
+  HeadingCsvFormat heading;
+  FilterConfig filter;
+  MagCsvFormat mag;               // used when heading comes from a magnetometer file instead
+  MagHeadingOptions mag_heading;
+};
+
+// Absent keys keep the defaults of ImuCsvFormat, HeadingCsvFormat, FilterConfig, MagCsvFormat and
+// MagHeadingOptions.
+CalibrateConfig loadCalibrateConfig(const std::string& path);
+CalibrateConfig parseCalibrateConfig(const std::string& yaml, const std::string& name);
+
+// The effective configuration as YAML in the same keys and human units as the input, every key written
+// out, so a user sees exactly what was used; loading it again gives the same configuration.
+std::string calibrateConfigToYaml(const CalibrateConfig& config);
+void writeCalibrateConfig(const std::string& path, const CalibrateConfig& config);
+
+}  // namespace imucal::io

@@ -1,0 +1,30 @@
+#pragma once
+// Reading recorded sensor files into SI, FRD samples. Every rejected file is named with the line at fault.
+#include <string>
+#include <vector>
+
+#include "imucal/core/magnetometer.hpp"
+#include "imucal/core/types.hpp"
+#include "imucal/io/csv_format.hpp"
+
+namespace imucal::io {
+
+// Time must strictly increase; output is specific force (m/s^2) and rate (rad/s) in FRD.
+std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format = {});
+
+// Heading (rad, clockwise from north) wrapped into (-pi, pi].
+std::vector<HeadingSample> readHeadingCsv(const std::string& path, const HeadingCsvFormat& format = {});
+
+// Field in uT, FRD.
+std::vector<MagSample> readMagCsv(const std::string& path, const MagCsvFormat& format = {});
+
+// Wrong-unit checks on converted samples: the median |accel| must be within 20 % of g (the recording is
+// mostly still or slow) and, for gyro_unit rad/s, no |gyro| may exceed 35 rad/s (2000 deg/s, beyond any
+// consumer gyro's range). Throws InputError naming `path` and the unit the data looks like.
+void checkImuUnits(const std::string& path, const std::vector<ImuSample>& samples,
+                   const std::vector<long>& lines, const ImuCsvFormat& format);
+
+// The median |field| must lie in 5..500 uT (Earth's field plus board offsets).
+void checkMagUnits(const std::string& path, const std::vector<MagSample>& samples, const MagCsvFormat& format);
+
+}  // namespace imucal::io

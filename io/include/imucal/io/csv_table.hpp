@@ -1,0 +1,37 @@
+#pragma once
+// Generic column-mapped CSV reading: a header row of names, then numeric rows. Columns are found by name,
+// so a file's column order and extra columns do not matter; every problem is reported with file and line.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace imucal::io {
+
+struct CsvColumns {
+  std::string path;
+  long header_line = 0;                 // 1-based
+  std::vector<std::string> header;      // every column name in the file, trimmed
+  std::vector<std::string> names;       // the requested columns, in request order
+  std::vector<double> values;           // row-major, names.size() per row, in request order
+  std::vector<long> lines;              // 1-based source line of each row
+
+  std::size_t rows() const { return lines.size(); }
+  double at(std::size_t row, std::size_t col) const { return values[row * names.size() + col]; }
+};
+
+// Reads `path`, keeping the requested columns. Blank lines and lines starting with '#' are skipped; a UTF-8
+// byte-order mark and CR line ends are tolerated. Throws InputError for an unreadable file, a missing or
+// doubled requested column, a row with too few or too many fields, an empty, non-numeric, NaN or infinite
+// value in a requested column, or a file without data rows. Unrequested columns are not parsed.
+CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names);
+
+// Throws InputError unless column `col` strictly increases (a step back or a repeated time stamp is named
+// with its line). `unit` is the file's time unit, shown next to the values.
+void checkTimeIncreasing(const CsvColumns& csv, std::size_t col, const std::string& unit);
+
+// Throws InputError naming `path` if two requested names are the same (one column feeding two roles is
+// almost always a copy-paste slip in a config). `roles` describes each name ("accel x", ...).
+void checkDistinctColumns(const std::string& path, const std::vector<std::string>& names,
+                          const std::vector<std::string>& roles);
+
+}  // namespace imucal::io

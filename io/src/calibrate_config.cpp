@@ -1,0 +1,186 @@
+#include <stdexcept>
+
+#include "imucal/core/units.hpp"
+#include "imucal/io/config.hpp"
+#include "imucal/io/config_sections.hpp"
+#include "imucal/io/yaml_fields.hpp"
+
+namespace imucal::io {
+
+namespace {
+
+using units::deg;
+
+template <class Unit, class Parse>
+Unit readUnit(YamlSection& s, const std::string& key, Unit fallback, Parse parse, const std::string& choices) {
+  const std::string name = s.text(key, unitName(fallback));
+  const auto unit = parse(name);
+  if (!unit) s.fail(key, "unknown unit '" + name + "' (expected " + choices + ")");
+  return *unit;
+}
+
+std::string readColumn(YamlSection& s, const std::string& key, const std::string& fallback) {
+  const std::string name = s.text(key, fallback);
+  if (name.empty()) s.fail(key, "a column name must not be empty");
+  return name;
+}
+
+std::array<std::string, 3> readColumns3(YamlSection& s, const std::string& key, const std::array<std::string, 3>& fallback) {
+  const auto names = s.texts3(key, fallback);
+  for (const auto& n : names)
+    if (n.empty()) s.fail(key, "a column name must not be empty");
+  return names;
+}
+
+AxisMap readAxes(YamlSection& s, const std::string& key, const AxisMap& fallback) {
+  const auto entries = s.texts3(key, fallback.entries());
+  try {
+    return parseAxisMap(entries);
+  } catch (const std::invalid_argument& e) {
+    s.fail(key, e.what());
+  }
+}
+
+ImuCsvFormat readImuFormat(YamlSection s) {
+  ImuCsvFormat f;
+  YamlSection columns = s.section("columns");
+  f.time = readColumn(columns, "time", f.time);
+  f.accel = readColumns3(columns, "accel", f.accel);
+  f.gyro = readColumns3(columns, "gyro", f.gyro);
+  // One column feeding two roles is a copy-paste slip; catch it here, where the line is known.
+  const std::array<std::pair<const char*, std::string>, 7> roles{{{"time", f.time},
+                                                                   {"accel x", f.accel[0]},
+                                                                   {"accel y", f.accel[1]},
+                                                                   {"accel z", f.accel[2]},
+                                                                   {"gyro x", f.gyro[0]},
+                                                                   {"gyro y", f.gyro[1]},
+                                                                   {"gyro z", f.gyro[2]}}};
+  for (std::size_t i = 0; i < roles.size(); ++i)
+    for (std::size_t j = i + 1; j < roles.size(); ++j)
+      if (roles[i].second == roles[j].second)
+        columns.fail(j <= 3 ? "accel" : "gyro",
+                     "column '" + roles[j].second + "' is used for both " + roles[i].first + " and " + roles[j].first);
+  columns.finish();
+  f.time_unit = readUnit(s, "time_unit", f.time_unit, parseTimeUnit, timeUnitChoices());
+  f.accel_unit = readUnit(s, "accel_unit", f.accel_unit, parseAccelUnit, accelUnitChoices());
+  f.gyro_unit = readUnit(s, "gyro_unit", f.gyro_unit, parseGyroUnit, gyroUnitChoices());
+  f.accel_axes = readAxes(s, "accel_axes", f.accel_axes);
+  f.gyro_axes = readAxes(s, "gyro_axes", f.gyro_axes);
+  f.accel_reads_gravity = s.boolean("accel_reads_gravity", f.accel_reads_gravity);
+  f.check_units = s.boolean("check_units", f.check_units);
+  s.finish();
+  return f;
+}
+
+HeadingCsvFormat readHeadingSection(YamlSection s, MeasurementConfig& m) {
+  HeadingCsvFormat f;
+  YamlSection columns = s.section("columns");
+  f.time = readColumn(columns, "time", f.time);
+  f.heading = readColumn(columns, "heading", f.heading);
+  columns.finish();
+  f.time_unit = readUnit(s, "time_unit", f.time_unit, parseTimeUnit, timeUnitChoices());
+  f.unit = readUnit(s, "unit", f.unit, parseAngleUnit, angleUnitChoices());
+  m.heading_sigma = s.number("sigma_deg", m.heading_sigma / deg, Range::positive()) * deg;
+  m.heading_latency = s.number("latency_ms", m.heading_latency * 1e3) * 1e-3;
+  m.heading_gate_sigma = s.number("gate_sigma", m.heading_gate_sigma, Range::nonNegative());
+  s.finish();
+  return f;
+}
+
+void readMagnetometer(YamlSection s, MagCsvFormat& f, MagHeadingOptions& o) {
+  YamlSection columns = s.section("columns");
+  f.time = readColumn(columns, "time", f.time);
+  f.field = readColumns3(columns, "field", f.field);
+  columns.finish();
+  f.time_unit = readUnit(s, "time_unit", f.time_unit, parseTimeUnit, timeUnitChoices());
+  f.unit = readUnit(s, "unit", f.unit, parseMagUnit, magUnitChoices());
+  f.axes = readAxes(s, "axes", f.axes);
+  f.check_units = s.boolean("check_units", f.check_units);
+  o.declination = s.number("declination_deg", o.declination / deg, Range::between(-180.0, 180.0)) * deg;
+  o.tilt_window = s.number("tilt_window_s", o.tilt_window, Range::positive());
+  o.tilt_sigma = s.number("tilt_sigma_deg", o.tilt_sigma / deg, Range::nonNegative()) * deg;
+  o.inclination = s.number("inclination_deg", o.inclination / deg, Range::between(-90.0, 90.0)) * deg;
+  s.finish();
+}
+
+NoiseConfig readNoise(YamlSection s, NoiseConfig n) {
+  n.accel_white = s.number("vrw_m_per_s_per_sqrt_h", n.accel_white / units::m_per_s_per_sqrt_h, Range::positive()) *
+                  units::m_per_s_per_sqrt_h;
+  n.gyro_white =
+      s.number("arw_deg_per_sqrt_h", n.gyro_white / units::deg_per_sqrt_h, Range::positive()) * units::deg_per_sqrt_h;
+  n.accel_bias_walk =
+      s.number("accel_bias_walk_ug_per_sqrt_s", n.accel_bias_walk / units::micro_g, Range::nonNegative()) *
+      units::micro_g;
+  n.gyro_bias_walk = s.number("gyro_bias_walk_deg_per_h_per_sqrt_h", n.gyro_bias_walk / units::deg_per_h_per_sqrt_h,
+                              Range::nonNegative()) *
+                     units::deg_per_h_per_sqrt_h;
+  s.finish();
+  return n;
+}
+
+PriorConfig readPrior(YamlSection s, PriorConfig p) {
+  const Range positive = Range::positive();
+  p.tilt = s.number("tilt_deg", p.tilt / deg, positive) * deg;
+  p.yaw = s.number("yaw_deg", p.yaw / deg, positive) * deg;
+  p.accel_bias = s.number("accel_bias_mg", p.accel_bias / units::milli_g, positive) * units::milli_g;
+  p.gyro_bias = s.number("gyro_bias_deg_per_h", p.gyro_bias / units::deg_per_h, positive) * units::deg_per_h;
+  p.accel_scale = s.number("accel_scale_ppm", p.accel_scale / units::ppm, positive) * units::ppm;
+  p.gyro_scale = s.number("gyro_scale_ppm", p.gyro_scale / units::ppm, positive) * units::ppm;
+  p.position = s.number("position_m", p.position, positive);
+  p.velocity = s.number("velocity_m_per_s", p.velocity, positive);
+  s.finish();
+  return p;
+}
+
+void readMeasurements(YamlSection s, MeasurementConfig& m) {
+  m.zero_velocity = s.boolean("zero_velocity", m.zero_velocity);
+  m.zero_velocity_sigma = s.number("zero_velocity_sigma_m_per_s", m.zero_velocity_sigma, Range::positive());
+  m.constant_position = s.boolean("constant_position", m.constant_position);
+  m.constant_position_sigma = s.number("constant_position_sigma_m", m.constant_position_sigma, Range::positive());
+  m.heading = s.boolean("heading", m.heading);
+  s.finish();
+}
+
+ModelOptions readModel(YamlSection s, ModelOptions o) {
+  o.accel_scale = s.boolean("accel_scale", o.accel_scale);
+  o.gyro_scale = s.boolean("gyro_scale", o.gyro_scale);
+  s.finish();
+  return o;
+}
+
+void readFilter(YamlSection s, FilterConfig& f) {
+  f.passes = s.integer("passes", f.passes, Range::between(1, 100));
+  f.full_yaw_reset = s.boolean("full_yaw_reset", f.full_yaw_reset);
+  f.gravity_linearization = s.boolean("gravity_linearization", f.gravity_linearization);
+  f.open_loop_refinement = s.boolean("open_loop_refinement", f.open_loop_refinement);
+  f.alignment_time = s.number("alignment_time_s", f.alignment_time, Range::positive());
+  f.converged_sigma_ratio = s.number("converged_sigma_ratio", f.converged_sigma_ratio,
+                                     {[](double v) { return v > 0.0 && v <= 1.0; }, "must be in (0, 1]"});
+  s.finish();
+}
+
+CalibrateConfig fromYaml(const YAML::Node& root, const std::string& name) {
+  YamlSection top(root, name, "");
+  CalibrateConfig c;
+  c.imu = readImuFormat(top.section("imu"));
+  c.heading = readHeadingSection(top.section("heading"), c.filter.measurements);
+  readMagnetometer(top.section("magnetometer"), c.mag, c.mag_heading);
+  c.filter.noise = readNoise(top.section("noise"), c.filter.noise);
+  c.filter.prior = readPrior(top.section("prior"), c.filter.prior);
+  readMeasurements(top.section("measurements"), c.filter.measurements);
+  c.filter.model = readModel(top.section("model"), c.filter.model);
+  c.filter.earth = readEarth(top.section("earth"), c.filter.earth);
+  readFilter(top.section("filter"), c.filter);
+  top.finish();
+  return c;
+}
+
+}  // namespace
+
+CalibrateConfig parseCalibrateConfig(const std::string& yaml, const std::string& name) {
+  return fromYaml(parseYaml(yaml, name), name);
+}
+
+CalibrateConfig loadCalibrateConfig(const std::string& path) { return fromYaml(loadYamlFile(path), path); }
+
+}  // namespace imucal::io

@@ -1,0 +1,136 @@
+#include "imucal/core/units.hpp"
+#include "imucal/io/atomic_file.hpp"
+#include "imucal/io/config.hpp"
+#include "imucal/io/config_sections.hpp"
+
+namespace imucal::io {
+
+namespace {
+
+using units::deg;
+
+void emitText(YAML::Emitter& out, const std::string& key, const std::string& value) {
+  out << YAML::Key << key << YAML::Value << value;
+}
+
+void emitTexts(YAML::Emitter& out, const std::string& key, const std::array<std::string, 3>& values) {
+  out << YAML::Key << key << YAML::Value << YAML::Flow << YAML::BeginSeq;
+  for (const auto& v : values) out << v;
+  out << YAML::EndSeq;
+}
+
+void emitBool(YAML::Emitter& out, const std::string& key, bool value) {
+  out << YAML::Key << key << YAML::Value << value;
+}
+
+void emitImu(YAML::Emitter& out, const ImuCsvFormat& f) {
+  out << YAML::Key << "imu" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "columns" << YAML::Value << YAML::BeginMap;
+  emitText(out, "time", f.time);
+  emitTexts(out, "accel", f.accel);
+  emitTexts(out, "gyro", f.gyro);
+  out << YAML::EndMap;
+  emitText(out, "time_unit", unitName(f.time_unit));
+  emitText(out, "accel_unit", unitName(f.accel_unit));
+  emitText(out, "gyro_unit", unitName(f.gyro_unit));
+  emitTexts(out, "accel_axes", f.accel_axes.entries());
+  emitTexts(out, "gyro_axes", f.gyro_axes.entries());
+  emitBool(out, "accel_reads_gravity", f.accel_reads_gravity);
+  emitBool(out, "check_units", f.check_units);
+  out << YAML::EndMap;
+}
+
+void emitHeading(YAML::Emitter& out, const HeadingCsvFormat& f, const MeasurementConfig& m) {
+  out << YAML::Key << "heading" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "columns" << YAML::Value << YAML::BeginMap;
+  emitText(out, "time", f.time);
+  emitText(out, "heading", f.heading);
+  out << YAML::EndMap;
+  emitText(out, "time_unit", unitName(f.time_unit));
+  emitText(out, "unit", unitName(f.unit));
+  emitNumber(out, "sigma_deg", m.heading_sigma / deg);
+  emitNumber(out, "latency_ms", m.heading_latency * 1e3);
+  emitNumber(out, "gate_sigma", m.heading_gate_sigma);
+  out << YAML::EndMap;
+}
+
+void emitMagnetometer(YAML::Emitter& out, const MagCsvFormat& f, const MagHeadingOptions& o) {
+  out << YAML::Key << "magnetometer" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "columns" << YAML::Value << YAML::BeginMap;
+  emitText(out, "time", f.time);
+  emitTexts(out, "field", f.field);
+  out << YAML::EndMap;
+  emitText(out, "time_unit", unitName(f.time_unit));
+  emitText(out, "unit", unitName(f.unit));
+  emitTexts(out, "axes", f.axes.entries());
+  emitBool(out, "check_units", f.check_units);
+  emitNumber(out, "declination_deg", o.declination / deg);
+  emitNumber(out, "tilt_window_s", o.tilt_window);
+  emitNumber(out, "tilt_sigma_deg", o.tilt_sigma / deg);
+  emitNumber(out, "inclination_deg", o.inclination / deg);
+  out << YAML::EndMap;
+}
+
+void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
+  out << YAML::Key << "noise" << YAML::Value << YAML::BeginMap;
+  emitNumber(out, "vrw_m_per_s_per_sqrt_h", f.noise.accel_white / units::m_per_s_per_sqrt_h);
+  emitNumber(out, "arw_deg_per_sqrt_h", f.noise.gyro_white / units::deg_per_sqrt_h);
+  emitNumber(out, "accel_bias_walk_ug_per_sqrt_s", f.noise.accel_bias_walk / units::micro_g);
+  emitNumber(out, "gyro_bias_walk_deg_per_h_per_sqrt_h", f.noise.gyro_bias_walk / units::deg_per_h_per_sqrt_h);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "prior" << YAML::Value << YAML::BeginMap;
+  emitNumber(out, "tilt_deg", f.prior.tilt / deg);
+  emitNumber(out, "yaw_deg", f.prior.yaw / deg);
+  emitNumber(out, "accel_bias_mg", f.prior.accel_bias / units::milli_g);
+  emitNumber(out, "gyro_bias_deg_per_h", f.prior.gyro_bias / units::deg_per_h);
+  emitNumber(out, "accel_scale_ppm", f.prior.accel_scale / units::ppm);
+  emitNumber(out, "gyro_scale_ppm", f.prior.gyro_scale / units::ppm);
+  emitNumber(out, "position_m", f.prior.position);
+  emitNumber(out, "velocity_m_per_s", f.prior.velocity);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "measurements" << YAML::Value << YAML::BeginMap;
+  emitBool(out, "zero_velocity", f.measurements.zero_velocity);
+  emitNumber(out, "zero_velocity_sigma_m_per_s", f.measurements.zero_velocity_sigma);
+  emitBool(out, "constant_position", f.measurements.constant_position);
+  emitNumber(out, "constant_position_sigma_m", f.measurements.constant_position_sigma);
+  emitBool(out, "heading", f.measurements.heading);
+  out << YAML::EndMap;
+
+  out << YAML::Key << "model" << YAML::Value << YAML::BeginMap;
+  emitBool(out, "accel_scale", f.model.accel_scale);
+  emitBool(out, "gyro_scale", f.model.gyro_scale);
+  out << YAML::EndMap;
+
+  emitEarth(out, f.earth);
+
+  out << YAML::Key << "filter" << YAML::Value << YAML::BeginMap;
+  out << YAML::Key << "passes" << YAML::Value << f.passes;
+  emitBool(out, "full_yaw_reset", f.full_yaw_reset);
+  emitBool(out, "gravity_linearization", f.gravity_linearization);
+  emitBool(out, "open_loop_refinement", f.open_loop_refinement);
+  emitNumber(out, "alignment_time_s", f.alignment_time);
+  emitNumber(out, "converged_sigma_ratio", f.converged_sigma_ratio);
+  out << YAML::EndMap;
+}
+
+}  // namespace
+
+std::string calibrateConfigToYaml(const CalibrateConfig& config) {
+  YAML::Emitter out;
+  out << YAML::Comment("Effective calibrate configuration: every setting, defaults included, in human units.");
+  out << YAML::BeginMap;
+  emitImu(out, config.imu);
+  emitHeading(out, config.heading, config.filter.measurements);
+  emitMagnetometer(out, config.mag, config.mag_heading);
+  emitFilterSections(out, config.filter);
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+void writeCalibrateConfig(const std::string& path, const CalibrateConfig& config) {
+  writeFileAtomically(path, calibrateConfigToYaml(config));
+}
+
+}  // namespace imucal::io

@@ -1,0 +1,167 @@
+#include "imucal/io/csv_table.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <string_view>
+
+#include "imucal/io/errors.hpp"
+#include "imucal/io/number_text.hpp"
+
+namespace imucal::io {
+
+namespace {
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t");
+  return s.substr(first, last - first + 1);
+}
+
+// Spreadsheets quote names and values ("t","ax"); the quotes are not part of the content.
+std::string_view unquote(std::string_view s) {
+  s = trim(s);
+  if (s.size() >= 2 && s.front() == '"' && s.back() == '"') s = trim(s.substr(1, s.size() - 2));
+  return s;
+}
+
+std::vector<std::string_view> splitFields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = line.find(',', start);
+    if (comma == std::string_view::npos) {
+      fields.push_back(unquote(line.substr(start)));
+      return fields;
+    }
+    fields.push_back(unquote(line.substr(start, comma - start)));
+    start = comma + 1;
+  }
+}
+
+bool isSkipped(std::string_view line) {
+  const auto t = trim(line);
+  return t.empty() || t.front() == '#';
+}
+
+// A header of numbers means the file has no header row at all, which deserves its own hint.
+bool looksLikeData(const std::vector<std::string>& header) {
+  for (const auto& name : header)
+    if (parseNumber(name).status != NumberStatus::Ok) return false;
+  return true;
+}
+
+std::string joinNames(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) {
+    if (!out.empty()) out += ", ";
+    out += n;
+  }
+  return out;
+}
+
+double parseField(const std::string& path, long line, const std::string& column, std::string_view text) {
+  const ParsedNumber n = parseNumber(text);
+  const std::string where = "column '" + column + "': ";
+  switch (n.status) {
+    case NumberStatus::Empty: throwInputError(path, line, where + "empty value");
+    case NumberStatus::NotANumber: throwInputError(path, line, where + "not a number ('" + std::string(text) + "')");
+    case NumberStatus::OutOfRange:
+      throwInputError(path, line, where + "number out of range ('" + std::string(text) + "')");
+    case NumberStatus::Ok: break;
+  }
+  if (std::isnan(n.value)) throwInputError(path, line, "NaN in column '" + column + "'");
+  if (std::isinf(n.value))
+    throwInputError(path, line, "infinite value in column '" + column + "' ('" + std::string(text) + "')");
+  return n.value;
+}
+
+}  // namespace
+
+CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throwInputError(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
+
+  CsvColumns csv;
+  csv.path = path;
+  csv.names = names;
+  std::vector<std::size_t> field_of(names.size());
+
+  std::string raw;
+  long line_no = 0;
+  while (std::getline(in, raw)) {
+    ++line_no;
+    std::string_view line(raw);
+    if (line_no == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    if (isSkipped(line)) continue;
+    const auto fields = splitFields(line);
+
+    if (csv.header.empty()) {
+      csv.header_line = line_no;
+      for (const auto f : fields) csv.header.emplace_back(f);
+      for (std::size_t i = 0; i < names.size(); ++i) {
+        long found = -1;
+        for (std::size_t f = 0; f < csv.header.size(); ++f) {
+          if (csv.header[f] != names[i]) continue;
+          if (found >= 0)
+            throwInputError(path, line_no, "column '" + names[i] + "' appears twice (fields " +
+                                               std::to_string(found + 1) + " and " + std::to_string(f + 1) + ")");
+          found = static_cast<long>(f);
+        }
+        if (found < 0)
+          throwInputError(path, line_no, "missing column '" + names[i] + "' (have: " + joinNames(csv.header) + ")" +
+                                             (looksLikeData(csv.header) ? "; this line looks like data, but the "
+                                                                          "first line that is not a comment must "
+                                                                          "name the columns"
+                                                                        : ""));
+        field_of[i] = static_cast<std::size_t>(found);
+      }
+      continue;
+    }
+
+    if (fields.size() < csv.header.size())
+      throwInputError(path, line_no, "truncated line: " + std::to_string(fields.size()) + " of " +
+                                         std::to_string(csv.header.size()) + " fields");
+    if (fields.size() > csv.header.size())
+      throwInputError(path, line_no, std::to_string(fields.size()) + " fields, but the header (line " +
+                                         std::to_string(csv.header_line) + ") has " +
+                                         std::to_string(csv.header.size()));
+    for (std::size_t i = 0; i < names.size(); ++i)
+      csv.values.push_back(parseField(path, line_no, names[i], fields[field_of[i]]));
+    csv.lines.push_back(line_no);
+  }
+  if (in.bad()) throwInputError(path, line_no, std::string("read error: ") + std::strerror(errno));
+  if (csv.header.empty()) throwInputError(path, 0, "empty file: no header row");
+  if (csv.lines.empty())
+    throwInputError(path, csv.header_line, "no data rows after the header");
+  return csv;
+}
+
+void checkTimeIncreasing(const CsvColumns& csv, std::size_t col, const std::string& unit) {
+  const std::string& column = csv.names[col];
+  for (std::size_t r = 1; r < csv.rows(); ++r) {
+    const double prev = csv.at(r - 1, col);
+    const double now = csv.at(r, col);
+    if (now > prev) continue;
+    if (now == prev)
+      throwInputError(csv.path, csv.lines[r], "duplicate time in column '" + column + "' (" + formatExact(now) +
+                                                   " " + unit + ", same as line " +
+                                                   std::to_string(csv.lines[r - 1]) + ")");
+    throwInputError(csv.path, csv.lines[r], "time goes backwards in column '" + column + "' (" +
+                                                formatExact(now) + " " + unit + " after " + formatExact(prev) +
+                                                " " + unit + " on line " + std::to_string(csv.lines[r - 1]) + ")");
+  }
+}
+
+void checkDistinctColumns(const std::string& path, const std::vector<std::string>& names,
+                          const std::vector<std::string>& roles) {
+  for (std::size_t i = 0; i < names.size(); ++i)
+    for (std::size_t j = i + 1; j < names.size(); ++j)
+      if (names[i] == names[j])
+        throwInputError(path, 0, "column '" + names[i] + "' is mapped to both " + roles[i] + " and " + roles[j]);
+}
+
+}  // namespace imucal::io

@@ -1,0 +1,28 @@
+#include "imucal/io/csv_reader.hpp"
+#include "imucal/io/csv_table.hpp"
+
+namespace imucal::io {
+
+std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format) {
+  const std::vector<std::string> names{format.time,    format.accel[0], format.accel[1], format.accel[2],
+                                       format.gyro[0], format.gyro[1],  format.gyro[2]};
+  checkDistinctColumns(path, names, {"time", "accel x", "accel y", "accel z", "gyro x", "gyro y", "gyro z"});
+  const CsvColumns csv = readCsvColumns(path, names);
+  checkTimeIncreasing(csv, 0, unitName(format.time_unit));
+
+  const double time_factor = unitFactor(format.time_unit);
+  // Negating after the axis map is the same as before it: both are linear.
+  const double accel_factor = unitFactor(format.accel_unit) * (format.accel_reads_gravity ? -1.0 : 1.0);
+  const double gyro_factor = unitFactor(format.gyro_unit);
+  std::vector<ImuSample> samples(csv.rows());
+  for (std::size_t r = 0; r < csv.rows(); ++r) {
+    ImuSample& s = samples[r];
+    s.t = csv.at(r, 0) * time_factor;
+    s.accel = format.accel_axes.apply(Vec3(csv.at(r, 1), csv.at(r, 2), csv.at(r, 3)) * accel_factor);
+    s.gyro = format.gyro_axes.apply(Vec3(csv.at(r, 4), csv.at(r, 5), csv.at(r, 6)) * gyro_factor);
+  }
+  if (format.check_units) checkImuUnits(path, samples, csv.lines, format);
+  return samples;
+}
+
+}  // namespace imucal::io

@@ -1,0 +1,78 @@
+#include <cmath>
+#include <stdexcept>
+
+#include "imucal/core/units.hpp"
+#include "imucal/io/atomic_file.hpp"
+#include "imucal/io/json_output.hpp"
+#include "imucal/io/param_units.hpp"
+
+namespace imucal::io {
+
+namespace {
+
+using nlohmann::json;
+
+// NaN has no JSON spelling; null says "no value" honestly instead of a made-up number.
+json numberOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+void checkSizes(const CalibrationResult& r) {
+  const auto n = static_cast<Eigen::Index>(r.names.size());
+  if (r.estimate.size() != n || r.sigma.size() != n || r.converged.size() != r.names.size())
+    throw std::invalid_argument("calibration result: " + std::to_string(n) + " names but " +
+                                std::to_string(r.estimate.size()) + " estimates, " + std::to_string(r.sigma.size()) +
+                                " sigmas, " + std::to_string(r.converged.size()) + " convergence flags");
+}
+
+}  // namespace
+
+nlohmann::json resultToJson(const CalibrationResult& result) {
+  checkSizes(result);
+  json params = json::object();
+  for (std::size_t i = 0; i < result.names.size(); ++i) {
+    const auto k = static_cast<Eigen::Index>(i);
+    const ParamUnit u = paramUnit(result.names[i]);
+    json p = {{"unit", u.human},
+              {"value", numberOrNull(result.estimate(k) / u.factor)},
+              {"sigma", numberOrNull(result.sigma(k) / u.factor)},
+              {"si_unit", u.si},
+              {"value_si", numberOrNull(result.estimate(k))},
+              {"sigma_si", numberOrNull(result.sigma(k))},
+              {"converged", static_cast<bool>(result.converged[i])},
+              {"convergence_time_s",
+               k < result.convergence_time.size() ? numberOrNull(result.convergence_time(k)) : json(nullptr)}};
+    if (k < result.prior_sigma.size()) {
+      p["prior_sigma"] = numberOrNull(result.prior_sigma(k) / u.factor);
+      p["prior_sigma_si"] = numberOrNull(result.prior_sigma(k));
+    }
+    params[result.names[i]] = p;
+  }
+
+  const MeasurementStats& s = result.stats;
+  json out = {{"parameters", params},
+              {"parameter_order", result.names},
+              {"stats",
+               {{"zero_velocity_updates", s.zero_velocity_updates},
+                {"position_updates", s.position_updates},
+                {"heading_updates", s.heading_updates},
+                {"heading_rejected", s.heading_rejected},
+                {"heading_nis_mean", numberOrNull(s.heading_nis_mean)},
+                {"velocity_nis_mean", numberOrNull(s.velocity_nis_mean)}}},
+              {"passes", result.passes_run},
+              {"duration_s", numberOrNull(result.duration)}};
+  if (!result.history.empty()) {
+    const EpochRecord& last = result.history.back();
+    out["final_state"] = {{"t", last.t},
+                          {"roll_deg", last.euler.x() / units::deg},
+                          {"pitch_deg", last.euler.y() / units::deg},
+                          {"yaw_deg", last.euler.z() / units::deg},
+                          {"velocity_m_per_s", {last.velocity.x(), last.velocity.y(), last.velocity.z()}},
+                          {"position_m", {last.position.x(), last.position.y(), last.position.z()}}};
+  }
+  return out;
+}
+
+void writeJsonFile(const std::string& path, const nlohmann::json& json) {
+  writeFileAtomically(path, json.dump(2) + "\n");
+}
+
+}  // namespace imucal::io

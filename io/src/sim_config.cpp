@@ -1,0 +1,199 @@
+#include <cmath>
+
+#include "imucal/core/units.hpp"
+#include "imucal/io/config.hpp"
+#include "imucal/io/config_sections.hpp"
+#include "imucal/io/errors.hpp"
+#include "imucal/io/yaml_fields.hpp"
+
+namespace imucal::io {
+
+namespace {
+
+using units::deg;
+
+Vec3 readAxis(YamlSection& s, const std::string& key) {
+  const YAML::Node value = s.raw(key);
+  if (!value.IsDefined()) s.fail(key, "required: x, y, z (optionally signed) or a list of 3 numbers");
+  if (value.IsScalar()) {
+    const std::string& name = value.Scalar();
+    const double sign = !name.empty() && name[0] == '-' ? -1.0 : 1.0;
+    const std::string bare = !name.empty() && (name[0] == '-' || name[0] == '+') ? name.substr(1) : name;
+    if (bare == "x") return sign * Vec3::UnitX();
+    if (bare == "y") return sign * Vec3::UnitY();
+    if (bare == "z") return sign * Vec3::UnitZ();
+    s.failAt(value, key, "unknown axis '" + name + "' (expected x, y, z, -x, -y, -z or a list of 3 numbers)");
+  }
+  const Vec3 axis = s.vector3(key, Vec3::Zero(), false);
+  if (!(axis.norm() > 1e-9)) s.failAt(value, key, "the axis must not be the zero vector");
+  return axis;
+}
+
+double requiredNumber(YamlSection& s, const std::string& key, const Range& range) {
+  const auto v = s.optionalNumber(key, range);
+  if (!v) s.fail(key, "required");
+  return *v;
+}
+
+sim::Segment readSegment(const YAML::Node& item, const std::string& file, const std::string& path) {
+  if (!item.IsMap() || item.size() != 1)
+    throwInputError(file, lineOf(item), path + ": expected one of {still: {...}} or {rotate: {...}}");
+  const std::string kind = item.begin()->first.Scalar();
+  const YAML::Node body = item.begin()->second;
+  sim::Segment segment;
+  if (kind == "still") {
+    YamlSection s(body, file, path + ".still");
+    segment.kind = sim::SegmentKind::Still;
+    segment.duration = requiredNumber(s, "duration_s", Range::positive());
+    s.finish();
+  } else if (kind == "rotate") {
+    YamlSection s(body, file, path + ".rotate");
+    segment.kind = sim::SegmentKind::Rotate;
+    segment.axis = readAxis(s, "axis");
+    segment.angle = requiredNumber(s, "angle_deg", Range::any()) * deg;
+    segment.duration = requiredNumber(s, "duration_s", Range::positive());
+    const std::string profile = s.text("profile", "raised_cosine");
+    if (profile == "raised_cosine") {
+      segment.profile = sim::RateProfile::RaisedCosine;
+    } else if (profile == "constant") {
+      segment.profile = sim::RateProfile::Constant;
+    } else {
+      s.fail("profile", "unknown profile '" + profile + "' (expected raised_cosine, constant)");
+    }
+    s.finish();
+  } else {
+    throwInputError(file, lineOf(item.begin()->first),
+                    path + ": unknown segment kind '" + kind + "' (expected still, rotate)");
+  }
+  return segment;
+}
+
+std::vector<sim::Segment> readSegments(YamlSection& motion) {
+  const YAML::Node list = motion.raw("segments");
+  if (!list.IsDefined()) motion.fail("segments", "required: a list of {still: ...} / {rotate: ...}, or 'paper'");
+  if (list.IsScalar() && list.Scalar() == "paper") return sim::paperMotion().segments;
+  if (!list.IsSequence() || list.size() == 0)
+    motion.failAt(list, "segments", "expected a non-empty list of {still: ...} / {rotate: ...}, or 'paper'");
+  std::vector<sim::Segment> segments;
+  for (std::size_t i = 0; i < list.size(); ++i)
+    segments.push_back(readSegment(list[i], motion.file(), motion.keyPath("segments") + "[" + std::to_string(i) + "]"));
+  return segments;
+}
+
+sim::MotionConfig readMotion(YamlSection& top) {
+  const YAML::Node node = top.raw("motion");
+  if (!node.IsDefined()) top.fail("motion", "required: 'paper' or a mapping with segments");
+  if (node.IsScalar()) {
+    if (node.Scalar() == "paper") return sim::paperMotion();
+    top.failAt(node, "motion", "expected 'paper' or a mapping with segments, got '" + node.Scalar() + "'");
+  }
+  YamlSection s(node, top.file(), "motion");
+  sim::MotionConfig motion;
+  motion.segments = readSegments(s);
+  motion.initial_euler = s.vector3("initial_euler_deg", motion.initial_euler / deg, false) * deg;
+  motion.lever_arm = s.vector3("lever_arm_m", motion.lever_arm, false);
+  YamlSection j = s.section("jitter");
+  motion.jitter.amplitude = j.number("amplitude_deg", motion.jitter.amplitude / deg, Range::nonNegative()) * deg;
+  motion.jitter.bandwidth = j.number("bandwidth_hz", motion.jitter.bandwidth, Range::positive());
+  motion.jitter.components = j.integer("components", motion.jitter.components, Range::atLeast(1));
+  j.finish();
+  s.finish();
+  return motion;
+}
+
+// Saturation 0 means none; anything else must at least pass a still device's 1 g.
+Range accelSaturationRange() {
+  return {[](double v) { return v == 0.0 || v > 1.0; }, "must be 0 (none) or more than 1 g"};
+}
+
+void readAccel(YamlSection s, TriadErrors& e, sim::TriadNoise& n) {
+  const double g = units::kStandardGravity;
+  const Range scale_range = Range::between(-5e5, 5e5);
+  e.bias = s.vector3("bias_mg", e.bias / units::milli_g, true) * units::milli_g;
+  e.scale = s.vector3("scale_ppm", e.scale / units::ppm, true, scale_range) * units::ppm;
+  e.misalignment = s.offDiagonal3("misalignment_mrad", e.misalignment * 1e3) * 1e-3;
+  n.white = s.vector3("vrw_m_per_s_per_sqrt_h", n.white / units::m_per_s_per_sqrt_h, true, Range::nonNegative()) *
+            units::m_per_s_per_sqrt_h;
+  n.bias_instability =
+      s.vector3("bias_instability_ug", n.bias_instability / units::micro_g, true, Range::nonNegative()) * units::micro_g;
+  n.bias_correlation_time = s.number("bias_correlation_s", n.bias_correlation_time, Range::positive());
+  n.bias_random_walk =
+      s.vector3("bias_random_walk_ug_per_sqrt_s", n.bias_random_walk / units::micro_g, true, Range::nonNegative()) *
+      units::micro_g;
+  n.quantization = s.number("quantization_mg", n.quantization / units::milli_g, Range::nonNegative()) * units::milli_g;
+  n.saturation = s.number("saturation_g", n.saturation / g, accelSaturationRange()) * g;
+  s.finish();
+}
+
+void readGyro(YamlSection s, ImuErrorModel& model, sim::TriadNoise& n) {
+  TriadErrors& e = model.gyro;
+  const Range scale_range = Range::between(-5e5, 5e5);
+  const double g_sens_unit = units::deg_per_h / units::kStandardGravity;  // rad/s per m/s^2 per (deg/h/g)
+  e.bias = s.vector3("bias_deg_per_h", e.bias / units::deg_per_h, true) * units::deg_per_h;
+  e.scale = s.vector3("scale_ppm", e.scale / units::ppm, true, scale_range) * units::ppm;
+  e.misalignment = s.offDiagonal3("misalignment_mrad", e.misalignment * 1e3) * 1e-3;
+  n.white = s.vector3("arw_deg_per_sqrt_h", n.white / units::deg_per_sqrt_h, true, Range::nonNegative()) *
+            units::deg_per_sqrt_h;
+  n.bias_instability =
+      s.vector3("bias_instability_deg_per_h", n.bias_instability / units::deg_per_h, true, Range::nonNegative()) *
+      units::deg_per_h;
+  n.bias_correlation_time = s.number("bias_correlation_s", n.bias_correlation_time, Range::positive());
+  n.bias_random_walk = s.vector3("bias_random_walk_deg_per_h_per_sqrt_h",
+                                 n.bias_random_walk / units::deg_per_h_per_sqrt_h, true, Range::nonNegative()) *
+                       units::deg_per_h_per_sqrt_h;
+  n.quantization = s.number("quantization_deg_per_s", n.quantization / units::deg_per_s, Range::nonNegative()) *
+                   units::deg_per_s;
+  n.saturation =
+      s.number("saturation_deg_per_s", n.saturation / units::deg_per_s, Range::nonNegative()) * units::deg_per_s;
+  model.gyro_g_sensitivity =
+      s.matrix3("g_sensitivity_deg_per_h_per_g", model.gyro_g_sensitivity / g_sens_unit) * g_sens_unit;
+  s.finish();
+}
+
+sim::ImuSimConfig readImu(YamlSection s) {
+  sim::ImuSimConfig imu;
+  imu.rate_hz = s.number("rate_hz", imu.rate_hz, Range::positive());
+  const YAML::Node jitter_node = s.raw("timing_jitter_us");
+  imu.timing_jitter = s.number("timing_jitter_us", imu.timing_jitter * 1e6, Range::nonNegative()) * 1e-6;
+  // Beyond half a period, jittered sample times could swap order.
+  if (imu.timing_jitter >= 0.5 / imu.rate_hz)
+    s.failAt(jitter_node, "timing_jitter_us",
+             "must be less than half the sample period (" + configNumber(0.5e6 / imu.rate_hz) + " us at " +
+                 configNumber(imu.rate_hz) + " Hz)");
+  readAccel(s.section("accel"), imu.errors.accel, imu.accel_noise);
+  readGyro(s.section("gyro"), imu.errors, imu.gyro_noise);
+  s.finish();
+  return imu;
+}
+
+sim::HeadingSimConfig readHeading(YamlSection s) {
+  sim::HeadingSimConfig h;
+  h.enabled = s.boolean("enabled", h.enabled);
+  h.rate_hz = s.number("rate_hz", h.rate_hz, Range::positive());
+  h.noise = s.number("noise_deg", h.noise / deg, Range::nonNegative()) * deg;
+  h.bias = s.number("bias_deg", h.bias / deg) * deg;
+  h.latency = s.number("latency_ms", h.latency * 1e3) * 1e-3;
+  s.finish();
+  return h;
+}
+
+sim::SimConfig fromYaml(const YAML::Node& root, const std::string& name) {
+  YamlSection top(root, name, "");
+  sim::SimConfig config;
+  config.motion = readMotion(top);
+  config.earth = readEarth(top.section("earth"), config.earth);
+  config.imu = readImu(top.section("imu"));
+  config.heading = readHeading(top.section("heading"));
+  top.finish();
+  return config;
+}
+
+}  // namespace
+
+sim::SimConfig parseSimConfig(const std::string& yaml, const std::string& name) {
+  return fromYaml(parseYaml(yaml, name), name);
+}
+
+sim::SimConfig loadSimConfig(const std::string& path) { return fromYaml(loadYamlFile(path), path); }
+
+}  // namespace imucal::io

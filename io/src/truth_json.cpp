@@ -1,0 +1,164 @@
+#include "imucal/core/units.hpp"
+#include "imucal/io/json_output.hpp"
+#include "imucal/io/param_units.hpp"
+
+namespace imucal::io {
+
+namespace {
+
+using nlohmann::json;
+using units::deg;
+
+json vec(const Vec3& v, double per_unit = 1.0) { return json::array({v.x() / per_unit, v.y() / per_unit, v.z() / per_unit}); }
+
+json mat(const Mat3& m, double per_unit = 1.0) {
+  json rows = json::array();
+  for (int r = 0; r < 3; ++r) rows.push_back(vec(m.row(r).transpose(), per_unit));
+  return rows;
+}
+
+json motionJson(const sim::MotionConfig& m) {
+  json segments = json::array();
+  for (const auto& s : m.segments) {
+    json j;
+    j["kind"] = s.kind == sim::SegmentKind::Still ? "still" : "rotate";
+    j["duration_s"] = s.duration;
+    if (s.kind == sim::SegmentKind::Rotate) {
+      j["axis"] = vec(s.axis.normalized());
+      j["angle_deg"] = s.angle / deg;
+      j["angle_rad"] = s.angle;
+      j["profile"] = s.profile == sim::RateProfile::RaisedCosine ? "raised_cosine" : "constant";
+    }
+    segments.push_back(j);
+  }
+  return {{"segments", segments},
+          {"initial_euler_deg", vec(m.initial_euler, deg)},
+          {"initial_euler_rad", vec(m.initial_euler)},
+          {"lever_arm_m", vec(m.lever_arm)},
+          {"jitter",
+           {{"amplitude_deg", m.jitter.amplitude / deg},
+            {"amplitude_rad", m.jitter.amplitude},
+            {"bandwidth_hz", m.jitter.bandwidth},
+            {"components", m.jitter.components}}}};
+}
+
+json accelJson(const TriadErrors& e, const sim::TriadNoise& n) {
+  const double g = units::kStandardGravity;
+  return {{"bias_mg", vec(e.bias, units::milli_g)},
+          {"bias_m_per_s2", vec(e.bias)},
+          {"scale_ppm", vec(e.scale, units::ppm)},
+          {"scale", vec(e.scale)},
+          {"misalignment_mrad", mat(e.misalignment, 1e-3)},
+          {"misalignment_rad", mat(e.misalignment)},
+          {"vrw_m_per_s_per_sqrt_h", vec(n.white, units::m_per_s_per_sqrt_h)},
+          {"vrw_m_per_s_per_sqrt_s", vec(n.white)},
+          {"bias_instability_ug", vec(n.bias_instability, units::micro_g)},
+          {"bias_instability_m_per_s2", vec(n.bias_instability)},
+          {"bias_correlation_s", n.bias_correlation_time},
+          {"bias_random_walk_ug_per_sqrt_s", vec(n.bias_random_walk, units::micro_g)},
+          {"bias_random_walk_m_per_s2_per_sqrt_s", vec(n.bias_random_walk)},
+          {"quantization_mg", n.quantization / units::milli_g},
+          {"quantization_m_per_s2", n.quantization},
+          {"saturation_g", n.saturation / g},
+          {"saturation_m_per_s2", n.saturation}};
+}
+
+json gyroJson(const ImuErrorModel& model, const sim::TriadNoise& n) {
+  const TriadErrors& e = model.gyro;
+  const double g_sens_unit = units::deg_per_h / units::kStandardGravity;
+  return {{"bias_deg_per_h", vec(e.bias, units::deg_per_h)},
+          {"bias_rad_per_s", vec(e.bias)},
+          {"scale_ppm", vec(e.scale, units::ppm)},
+          {"scale", vec(e.scale)},
+          {"misalignment_mrad", mat(e.misalignment, 1e-3)},
+          {"misalignment_rad", mat(e.misalignment)},
+          {"arw_deg_per_sqrt_h", vec(n.white, units::deg_per_sqrt_h)},
+          {"arw_rad_per_sqrt_s", vec(n.white)},
+          {"bias_instability_deg_per_h", vec(n.bias_instability, units::deg_per_h)},
+          {"bias_instability_rad_per_s", vec(n.bias_instability)},
+          {"bias_correlation_s", n.bias_correlation_time},
+          {"bias_random_walk_deg_per_h_per_sqrt_h", vec(n.bias_random_walk, units::deg_per_h_per_sqrt_h)},
+          {"bias_random_walk_rad_per_s_per_sqrt_s", vec(n.bias_random_walk)},
+          {"quantization_deg_per_s", n.quantization / units::deg_per_s},
+          {"quantization_rad_per_s", n.quantization},
+          {"saturation_deg_per_s", n.saturation / units::deg_per_s},
+          {"saturation_rad_per_s", n.saturation},
+          {"g_sensitivity_deg_per_h_per_g", mat(model.gyro_g_sensitivity, g_sens_unit)},
+          {"g_sensitivity_rad_per_s_per_m_per_s2", mat(model.gyro_g_sensitivity)}};
+}
+
+Vec3 mean(const std::vector<Vec3>& v) {
+  Vec3 sum = Vec3::Zero();
+  for (const auto& x : v) sum += x;
+  return v.empty() ? sum : Vec3(sum / static_cast<double>(v.size()));
+}
+
+// One truth parameter, keyed like resultToJson's entries.
+json parameter(const std::string& name, double value_si) {
+  const ParamUnit u = paramUnit(name);
+  return {{"value", value_si / u.factor}, {"unit", u.human}, {"value_si", value_si}, {"si_unit", u.si}};
+}
+
+void addTriad(json& params, const std::string& prefix, const Vec3& start, const std::vector<Vec3>& series) {
+  const char* axes[3] = {"_x", "_y", "_z"};
+  const Vec3 average = series.empty() ? start : mean(series);
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = prefix + axes[i];
+    json p = parameter(name, start[i]);
+    if (!series.empty()) {
+      const ParamUnit u = paramUnit(name);
+      p["end_value"] = series.back()[i] / u.factor;
+      p["end_value_si"] = series.back()[i];
+      p["mean_value"] = average[i] / u.factor;
+      p["mean_value_si"] = average[i];
+    }
+    params[name] = p;
+  }
+}
+
+}  // namespace
+
+nlohmann::json truthToJson(const sim::SimConfig& config, const sim::SimOutput& output, std::uint64_t seed) {
+  const ImuErrorModel& applied = output.applied_errors;
+  json params = json::object();
+  addTriad(params, "accel_bias", applied.accel.bias, output.accel_bias_truth);
+  addTriad(params, "gyro_bias", applied.gyro.bias, output.gyro_bias_truth);
+  addTriad(params, "accel_scale", applied.accel.scale, {});
+  addTriad(params, "gyro_scale", applied.gyro.scale, {});
+
+  const double duration = output.imu.size() > 1 ? output.imu.back().t - output.imu.front().t : 0.0;
+  const auto& h = config.heading;
+  return {
+      {"seed", seed},
+      {"imu_samples", output.imu.size()},
+      {"heading_samples", output.heading.size()},
+      {"duration_s", duration},
+      {"parameters", params},
+      {"motion", motionJson(config.motion)},
+      {"earth",
+       {{"latitude_deg", config.earth.latitude / deg},
+        {"latitude_rad", config.earth.latitude},
+        {"height_m", config.earth.height},
+        {"latitude_gravity", config.earth.latitude_gravity},
+        {"earth_rate", config.earth.earth_rate},
+        {"gravity_m_per_s2", config.earth.gravity()}}},
+      {"imu",
+       {{"rate_hz", config.imu.rate_hz},
+        {"timing_jitter_us", config.imu.timing_jitter * 1e6},
+        {"timing_jitter_s", config.imu.timing_jitter},
+        // What was applied (biases at t = 0), which is the configured model unless the simulator drew it.
+        {"accel", accelJson(applied.accel, config.imu.accel_noise)},
+        {"gyro", gyroJson(applied, config.imu.gyro_noise)}}},
+      {"heading",
+       {{"enabled", h.enabled},
+        {"rate_hz", h.rate_hz},
+        {"noise_deg", h.noise / deg},
+        {"noise_rad", h.noise},
+        {"bias_deg", h.bias / deg},
+        {"bias_rad", h.bias},
+        {"latency_ms", h.latency * 1e3},
+        {"latency_s", h.latency}}},
+  };
+}
+
+}  // namespace imucal::io
