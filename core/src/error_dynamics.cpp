@@ -23,14 +23,17 @@ void ErrorDynamics::applyF(const Linearization& lin, const StateMat& X, StateMat
 
   out.middleRows<3>(L::kPos) = X.middleRows<3>(L::kVel);
   out.middleRows<3>(L::kVel).noalias() = -f_n_skew * X.middleRows<3>(L::kAtt);
-  out.middleRows<3>(L::kVel).noalias() -= c * X.middleRows<3>(L::kAccelBias);
-  out.middleRows<3>(L::kAtt).noalias() = -c * X.middleRows<3>(L::kGyroBias);
+  // d(corrected)/d(bias) = -1/(1+s) and d(corrected)/d(scale) = -corrected/(1+s), per axis.
+  const Mat3 c_a = c * lin.accel_gain_inv.asDiagonal();
+  const Mat3 c_g = c * lin.gyro_gain_inv.asDiagonal();
+  out.middleRows<3>(L::kVel).noalias() -= c_a * X.middleRows<3>(L::kAccelBias);
+  out.middleRows<3>(L::kAtt).noalias() = -c_g * X.middleRows<3>(L::kGyroBias);
   if (layout_.accel_scale >= 0) {
-    const Mat3 c_f = c * lin.f_b.asDiagonal();
+    const Mat3 c_f = c_a * lin.f_b.asDiagonal();
     out.middleRows<3>(L::kVel).noalias() -= c_f * X.middleRows<3>(layout_.accel_scale);
   }
   if (layout_.gyro_scale >= 0) {
-    const Mat3 c_w = c * lin.w_b.asDiagonal();
+    const Mat3 c_w = c_g * lin.w_b.asDiagonal();
     out.middleRows<3>(L::kAtt).noalias() -= c_w * X.middleRows<3>(layout_.gyro_scale);
   }
   if (earth_.earth_rate) {

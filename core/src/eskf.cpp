@@ -53,6 +53,13 @@ void Eskf::predict(const ImuSample& raw) {
   lin.f_b = config_.gravity_linearization ? Vec3(-(lin.c_bn.transpose() * config_.earth.gravityNed()))
                                           : Vec3(0.5 * (a.accel + b.accel));
   lin.w_b = 0.5 * (a.gyro + b.gyro);
+  constexpr int p0 = StateLayout::kParamStart;
+  if (layout_.accel_scale >= 0) {
+    lin.accel_gain_inv = (Vec3::Ones() + params_.segment<3>(layout_.accel_scale - p0)).cwiseInverse();
+  }
+  if (layout_.gyro_scale >= 0) {
+    lin.gyro_gain_inv = (Vec3::Ones() + params_.segment<3>(layout_.gyro_scale - p0)).cwiseInverse();
+  }
   if (!feedback_) {
     StateMat fdx;
     const StateMat dx = dx_;
@@ -121,16 +128,18 @@ void Eskf::correct() {
   params_ += dx_.segment(L::kParamStart, layout_.paramCount());
   dx_.setZero();
 
-  // Reset Jacobian of the attitude block. A yaw change of the estimate leaves the body's true and
-  // estimated verticals unchanged in body axes, so the tilt error expressed in NED turns with the full
-  // yaw correction; the first-order reset (I - [dphi/2 x]) turns it by half.
+  // Reset Jacobian of the attitude block. The error model treats phi's horizontal part as the physical
+  // tilt (the angle between true and estimated vertical). A yaw change of the estimate leaves both
+  // verticals where they are in body axes, so that tilt, expressed in NED, turns with the full yaw
+  // correction. The first-order map of the rotation-vector error, I + [dphi/2 x], turns it by half, which
+  // is right only while the yaw error stays small.
   Mat3 g;
   if (config_.full_yaw_reset) {
     const double c = std::cos(dphi.z());
     const double s = std::sin(dphi.z());
     g << c, -s, 0.0, s, c, 0.0, 0.0, 0.0, 1.0;
   } else {
-    g = Mat3::Identity() - 0.5 * skew(dphi);
+    g = Mat3::Identity() + 0.5 * skew(dphi);
   }
   P_.middleRows<3>(L::kAtt) = (g * P_.middleRows<3>(L::kAtt)).eval();
   P_.middleCols<3>(L::kAtt) = (P_.middleCols<3>(L::kAtt) * g.transpose()).eval();

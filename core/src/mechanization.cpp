@@ -12,7 +12,8 @@ void propagateNav(NavState& nav, const ImuSample& a, const ImuSample& b, const E
   // Rotation increment for a linearly varying rate, including the coning term.
   const Vec3 dtheta = 0.5 * (a.gyro + b.gyro) * dt + (a.gyro.cross(b.gyro)) * (dt * dt / 12.0);
   const Vec3 dv_b = 0.5 * (a.accel + b.accel) * dt;
-  const Quat q_mid = nav.q_nb * rotationVectorToQuat(0.5 * dtheta);
+  // Mid-step attitude, including the navigation frame's own rotation over the half step.
+  const Quat q_mid = rotationVectorToQuat(-0.5 * w_ie * dt) * nav.q_nb * rotationVectorToQuat(0.5 * dtheta);
   // Rotation compensation of the velocity increment is second order in dtheta and folded in by q_mid.
   const Vec3 dv_n = q_mid * dv_b;
   const Vec3 v0 = nav.v;

@@ -40,6 +40,10 @@ Quat eulerToQuat(double roll, double pitch, double yaw) {
 Vec3 quatToEuler(const Quat& q_nb) {
   const Mat3 c = q_nb.toRotationMatrix();
   const double pitch = std::asin(std::clamp(-c(2, 0), -1.0, 1.0));
+  if (std::abs(c(2, 0)) > 1.0 - 1e-12) {
+    // Gimbal lock: only yaw - roll (pitch up) or yaw + roll (pitch down) is defined; report it as yaw.
+    return Vec3(0.0, pitch, std::atan2(-c(0, 1), c(1, 1)));
+  }
   const double roll = std::atan2(c(2, 1), c(2, 2));
   const double yaw = std::atan2(c(1, 0), c(0, 0));
   return Vec3(roll, pitch, yaw);

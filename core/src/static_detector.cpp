@@ -37,7 +37,8 @@ std::vector<bool> detectStill(const std::vector<ImuSample>& imu, const StaticDet
     const Eigen::Matrix<double, 6, 1> var = (w.sum_sq / count - mean.cwiseProduct(mean)).cwiseMax(0.0);
     const double accel_std = std::sqrt(var.head<3>().maxCoeff());
     const double gyro_std = std::sqrt(var.tail<3>().maxCoeff());
-    still[i] = accel_std <= config.accel_std_max && gyro_std <= config.gyro_std_max;
+    const double gyro_mean = mean.tail<3>().norm();
+    still[i] = accel_std <= config.accel_std_max && gyro_std <= config.gyro_std_max && gyro_mean <= config.gyro_mean_max;
   }
   // Short still runs inside motion (a pause at the turn's reversal) are not a still segment.
   std::size_t i = 0;

@@ -21,13 +21,16 @@ struct Linearization {
   Mat3 c_bn = Mat3::Identity();   // body to navigation
   Vec3 f_b = Vec3::Zero();        // corrected specific force, body
   Vec3 w_b = Vec3::Zero();        // corrected inertial rate, body
+  // 1 / (1 + scale factor) per axis: the corrected value is (measured - bias) / (1 + scale).
+  Vec3 accel_gain_inv = Vec3::Ones();
+  Vec3 gyro_gain_inv = Vec3::Ones();
 };
 
 class ErrorDynamics {
  public:
   ErrorDynamics(const StateLayout& layout, const FilterConfig& config);
 
-  // P <- Phi P Phi^T + Q over dt with Phi = I + F dt (+ F^2 dt^2 / 2 in the products).
+  // P <- Phi P Phi^T + Q over dt with Phi = I + F dt.
   void propagate(StateMat& P, const Linearization& lin, double dt) const;
 
   // out = F X for the block-sparse F at lin (X has layout.size rows).

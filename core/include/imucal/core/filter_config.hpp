@@ -42,8 +42,9 @@ struct FilterConfig {
   PriorConfig prior;
   MeasurementConfig measurements;
   EarthModel earth;
-  // On a reset, rotate the tilt errors by the full yaw correction (exact for a yaw change) instead of the
-  // first-order reset; keeps tilt/bias correlations right when heading corrections are large.
+  // On a reset, turn the tilt errors with the full yaw correction (the tilt as the physical misalignment
+  // of the vertical does not move in body axes) instead of the first-order rotation-vector reset; keeps
+  // tilt/bias correlations right when heading corrections are large.
   bool full_yaw_reset = true;
   // Linearize the specific-force terms at the specific force the motion model predicts (minus gravity:
   // the device turns about a fixed centre) instead of at the noisy measurement. Measured noise in F makes

@@ -11,6 +11,9 @@ struct StaticDetectorConfig {
   double window = 0.5;          // s
   double gyro_std_max = 0.02;   // rad/s, per-axis standard deviation in the window (~1.1 deg/s)
   double accel_std_max = 0.15;  // m/s^2
+  // A smooth or constant-rate turn has little spread; its mean rate gives it away. Above any consumer
+  // gyro's bias (a few deg/s).
+  double gyro_mean_max = 0.2;   // rad/s (~11 deg/s)
   double min_still = 0.3;       // s; shorter still runs are called moving
 };
 

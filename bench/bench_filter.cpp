@@ -1,0 +1,95 @@
+// Cost of the error-state filter per IMU sample: one predict (mechanization + covariance propagation),
+// the zero-velocity and constant-position pseudo-measurements (six scalar Joseph updates) and the
+// correction, for the 15-state model and the 21-state model with accel and gyro scale factors; and the
+// same with a heading update at every sample (100 Hz heading, as in the paper setup).
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "imucal/core/calibrator.hpp"
+#include "imucal/core/eskf.hpp"
+#include "imucal/core/initial_alignment.hpp"
+#include "imucal/core/rotation.hpp"
+#include "imucal/core/units.hpp"
+#include "imucal/sim/simulator.hpp"
+
+namespace {
+
+using namespace imucal;
+
+// The paper motion (still, 360 deg turn, still) with consumer-grade noise: the attitude at the end equals
+// the one at the start, so the recording can be replayed end to end with time running on.
+const sim::SimOutput& paperData() {
+  static const sim::SimOutput out = sim::simulate(sim::paperScenario(5.0 * units::deg, true, 1), 1);
+  return out;
+}
+
+FilterConfig configFor(int states) {
+  FilterConfig cfg;
+  cfg.model.accel_scale = states > 15;
+  cfg.model.gyro_scale = states > 15;
+  return cfg;
+}
+
+void runFilter(benchmark::State& state, bool heading) {
+  const int states = static_cast<int>(state.range(0));
+  const sim::SimOutput& data = paperData();
+  const FilterConfig cfg = configFor(states);
+  Eskf filter(cfg);
+  if (filter.layout().size != states) {
+    state.SkipWithError("unexpected state size");
+    return;
+  }
+  const VecX params = VecX::Zero(filter.layout().paramCount());
+  const InitialAlignment init = alignInitialState(data.imu, data.heading, cfg, params, filter.layout());
+  filter.initialize(data.imu.front(), init.nav, params, init.P0);
+  const std::size_t n = data.imu.size() - 1;  // the last sample repeats the first one's attitude
+  const double period = data.imu[n].t - data.imu[0].t;
+  const auto& m = cfg.measurements;
+  std::size_t k = 1;
+  double offset = 0.0;
+  for (auto _ : state) {
+    ImuSample s = data.imu[k];
+    s.t += offset;
+    filter.predict(s);
+    benchmark::DoNotOptimize(filter.updateZeroVelocity(m.zero_velocity_sigma));
+    benchmark::DoNotOptimize(filter.updateConstantPosition(Vec3::Zero(), m.constant_position_sigma));
+    filter.correct();
+    if (heading) {
+      benchmark::DoNotOptimize(filter.updateHeading(data.heading[k].heading, m.heading_sigma).nis);
+      filter.correct();
+    }
+    if (++k > n) {
+      k = 1;
+      offset += period;  // replay from the second sample, one period later: time keeps increasing by dt
+    }
+  }
+  benchmark::DoNotOptimize(filter.covariance().data());
+  state.SetItemsProcessed(state.iterations());
+  state.counters["states"] = states;
+}
+
+void BM_FilterStep(benchmark::State& state) { runFilter(state, false); }
+void BM_FilterStepWithHeading(benchmark::State& state) { runFilter(state, true); }
+
+BENCHMARK(BM_FilterStep)->Arg(15)->Arg(21);
+BENCHMARK(BM_FilterStepWithHeading)->Arg(15)->Arg(21);
+
+// The whole calibration of the 30 s paper recording (3001 IMU and heading samples, up to 3 passes), per
+// IMU sample.
+void BM_Calibrate30s(benchmark::State& state) {
+  const sim::SimOutput& data = paperData();
+  const FilterConfig cfg = configFor(static_cast<int>(state.range(0)));
+  int passes = 0;
+  for (auto _ : state) {
+    const CalibrationResult r = calibrate(data.imu, data.heading, cfg);
+    passes = r.passes_run;
+    benchmark::DoNotOptimize(r.estimate.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(data.imu.size()));
+  state.counters["passes"] = passes;
+}
+
+BENCHMARK(BM_Calibrate30s)->Arg(15)->Arg(21)->Unit(benchmark::kMillisecond);
+
+}  // namespace

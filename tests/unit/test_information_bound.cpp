@@ -1,0 +1,132 @@
+// The information bound for the paper motion against closed-form limits: the vertical accel bias from
+// the velocity random walk, the vertical gyro bias from a linear regression of heading on time, and the
+// unobservable vertical gyro bias without heading.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "imucal/core/information_bound.hpp"
+#include "imucal/core/units.hpp"
+#include "imucal/sim/simulator.hpp"
+#include "imucal/sim/trajectory.hpp"
+
+namespace imucal {
+namespace {
+
+constexpr int kAccelZ = 2;  // parameter indices: accel bias x y z, gyro bias x y z
+constexpr int kGyroZ = 5;
+
+struct PaperData {
+  std::vector<TrajectoryPoint> trajectory;
+  std::vector<double> heading_times;
+};
+
+const PaperData& paperData() {
+  static const PaperData data = [] {
+    const sim::SimOutput out = sim::simulate(sim::paperScenario(5.0 * units::deg, true, 1), 1);
+    PaperData d;
+    d.trajectory = sim::toTrajectory(out.truth);
+    for (const auto& h : out.heading) d.heading_times.push_back(h.t);
+    return d;
+  }();
+  return data;
+}
+
+TEST(InformationBound, PaperSetupIsWhatTheClosedFormsAssume) {
+  const PaperData& d = paperData();
+  ASSERT_EQ(d.trajectory.size(), 3001u);  // 100 Hz over 30 s
+  EXPECT_DOUBLE_EQ(d.trajectory.front().t, 0.0);
+  EXPECT_DOUBLE_EQ(d.trajectory.back().t, 30.0);
+  ASSERT_EQ(d.heading_times.size(), 3001u);
+  const FilterConfig cfg;
+  EXPECT_NEAR(cfg.noise.accel_white, 0.15 * units::m_per_s_per_sqrt_h, 1e-15);
+  EXPECT_NEAR(cfg.noise.gyro_white, 0.3 * units::deg_per_sqrt_h, 1e-15);
+}
+
+TEST(InformationBound, AccelZBoundIsVelocityRandomWalkOverSqrtT) {
+  // Zero-velocity updates make the vertical velocity a direct measurement of the integrated vertical
+  // bias: sigma = VRW / sqrt(T).
+  const PaperData& d = paperData();
+  const FilterConfig cfg;
+  const BoundResult b = informationBound(d.trajectory, d.heading_times, cfg);
+  const double T = 30.0;
+  const double expected = cfg.noise.accel_white / std::sqrt(T);
+  EXPECT_NEAR(b.sigma(kAccelZ), expected, 0.10 * expected) << b.sigma(kAccelZ) << " vs " << expected;
+  ASSERT_EQ(b.names.size(), 6u);
+  EXPECT_EQ(b.names[kAccelZ], "accel_bias_z");
+  EXPECT_EQ(b.names[kGyroZ], "gyro_bias_z");
+  ASSERT_EQ(b.sigma_history.size(), d.trajectory.size());
+  EXPECT_EQ(b.t.size(), d.trajectory.size());
+  EXPECT_EQ((b.sigma_history.back() - b.sigma).norm(), 0.0);
+  EXPECT_NEAR(b.sigma(kAccelZ), std::sqrt(b.covariance(9 + kAccelZ, 9 + kAccelZ)), 1e-18);
+  // The history starts at the prior.
+  EXPECT_NEAR(b.sigma_history.front()(kAccelZ), cfg.prior.accel_bias, 1e-12);
+}
+
+TEST(InformationBound, GyroZBoundIsHeadingRegression) {
+  // Heading samples every 10 ms with sigma 5 deg; the gyro z bias is the slope of heading against time:
+  // sigma_slope = sigma * sqrt(12 / (N T^2)) for N samples spread evenly over T.
+  const PaperData& d = paperData();
+  const FilterConfig cfg;
+  ASSERT_NEAR(cfg.measurements.heading_sigma, 5.0 * units::deg, 1e-15);
+  const BoundResult b = informationBound(d.trajectory, d.heading_times, cfg);
+  const double N = static_cast<double>(d.heading_times.size());
+  const double T = 30.0;
+  const double expected = cfg.measurements.heading_sigma * std::sqrt(12.0 / (N * T * T));
+  EXPECT_NEAR(b.sigma(kGyroZ), expected, 0.15 * expected) << b.sigma(kGyroZ) << " vs " << expected;
+}
+
+TEST(InformationBound, GyroZUnobservableWithoutHeading) {
+  // Turning about the vertical never moves the vertical gyro bias out of the vertical: no information.
+  const PaperData& d = paperData();
+  FilterConfig cfg;
+  cfg.measurements.heading = false;
+  const BoundResult b = informationBound(d.trajectory, d.heading_times, cfg);
+  EXPECT_NEAR(b.sigma(kGyroZ), cfg.prior.gyro_bias, 0.05 * cfg.prior.gyro_bias);
+  // Heading enabled but no samples is the same.
+  FilterConfig with_heading;
+  const BoundResult none = informationBound(d.trajectory, {}, with_heading);
+  EXPECT_NEAR(none.sigma(kGyroZ), cfg.prior.gyro_bias, 0.05 * cfg.prior.gyro_bias);
+  // The other parameters do not depend on heading much: the accel z bound is unchanged.
+  const BoundResult with = informationBound(d.trajectory, d.heading_times, with_heading);
+  EXPECT_NEAR(b.sigma(kAccelZ), with.sigma(kAccelZ), 0.01 * with.sigma(kAccelZ));
+}
+
+TEST(InformationBound, GyroZBoundDecreasesWithHeadingNoise) {
+  const PaperData& d = paperData();
+  const double N = static_cast<double>(d.heading_times.size());
+  double previous = 1e300;
+  for (double noise_deg : {60.0, 30.0, 15.0, 5.0}) {
+    FilterConfig cfg;
+    cfg.measurements.heading_sigma = noise_deg * units::deg;
+    const double s = informationBound(d.trajectory, d.heading_times, cfg).sigma(kGyroZ);
+    EXPECT_LT(s, previous) << noise_deg << " deg";
+    // And it tracks the regression value at every noise level, so the decrease is the right one.
+    const double regression = noise_deg * units::deg * std::sqrt(12.0 / (N * 30.0 * 30.0));
+    EXPECT_NEAR(s, regression, 0.15 * regression) << noise_deg << " deg";
+    previous = s;
+  }
+}
+
+TEST(InformationBound, SigmaHistoryNeverIncreasesWithoutProcessNoise) {
+  // No bias random walk: information only accumulates, so no parameter sigma ever grows.
+  const PaperData& d = paperData();
+  const FilterConfig cfg;
+  const BoundResult b = informationBound(d.trajectory, d.heading_times, cfg);
+  int increases = 0;
+  for (std::size_t k = 1; k < b.sigma_history.size(); ++k) {
+    for (int i = 0; i < 6; ++i) {
+      if (b.sigma_history[k](i) > b.sigma_history[k - 1](i) * (1.0 + 1e-12)) ++increases;
+    }
+  }
+  EXPECT_EQ(increases, 0);
+}
+
+TEST(InformationBound, RejectsTooShortTrajectory) {
+  EXPECT_THROW(informationBound({TrajectoryPoint{}}, {}, FilterConfig{}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace imucal
