@@ -41,6 +41,13 @@ AxisMap readAxes(YamlSection& s, const std::string& key, const AxisMap& fallback
   }
 }
 
+// `retime: uniform` or `retime: logged` (keep the stamps as written).
+bool readRetime(YamlSection& s, bool fallback) {
+  const std::string value = s.text("retime", fallback ? "uniform" : "logged");
+  if (value != "uniform" && value != "logged") s.fail("retime", "unknown value '" + value + "' (expected uniform or logged)");
+  return value == "uniform";
+}
+
 ImuCsvFormat readImuFormat(YamlSection s) {
   ImuCsvFormat f;
   YamlSection columns = s.section("columns");
@@ -68,6 +75,7 @@ ImuCsvFormat readImuFormat(YamlSection s) {
   f.gyro_axes = readAxes(s, "gyro_axes", f.gyro_axes);
   f.accel_reads_gravity = s.boolean("accel_reads_gravity", f.accel_reads_gravity);
   f.check_units = s.boolean("check_units", f.check_units);
+  f.retime_uniformly = readRetime(s, f.retime_uniformly);
   s.finish();
   return f;
 }
@@ -96,10 +104,14 @@ void readMagnetometer(YamlSection s, MagCsvFormat& f, MagHeadingOptions& o) {
   f.unit = readUnit(s, "unit", f.unit, parseMagUnit, magUnitChoices());
   f.axes = readAxes(s, "axes", f.axes);
   f.check_units = s.boolean("check_units", f.check_units);
+  f.retime_uniformly = readRetime(s, f.retime_uniformly);
   o.declination = s.number("declination_deg", o.declination / deg, Range::between(-180.0, 180.0)) * deg;
   o.tilt_window = s.number("tilt_window_s", o.tilt_window, Range::positive());
   o.tilt_sigma = s.number("tilt_sigma_deg", o.tilt_sigma / deg, Range::nonNegative()) * deg;
   o.inclination = s.number("inclination_deg", o.inclination / deg, Range::between(-90.0, 90.0)) * deg;
+  o.levelled_fit = s.boolean("levelled_fit", o.levelled_fit);
+  o.soft_iron = s.boolean("horizontal_soft_iron", o.soft_iron);
+  o.interval = s.number("heading_interval_s", o.interval, Range::nonNegative());
   s.finish();
 }
 

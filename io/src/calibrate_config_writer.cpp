@@ -37,6 +37,7 @@ void emitImu(YAML::Emitter& out, const ImuCsvFormat& f) {
   emitTexts(out, "gyro_axes", f.gyro_axes.entries());
   emitBool(out, "accel_reads_gravity", f.accel_reads_gravity);
   emitBool(out, "check_units", f.check_units);
+  emitText(out, "retime", f.retime_uniformly ? "uniform" : "logged");
   out << YAML::EndMap;
 }
 
@@ -64,10 +65,14 @@ void emitMagnetometer(YAML::Emitter& out, const MagCsvFormat& f, const MagHeadin
   emitText(out, "unit", unitName(f.unit));
   emitTexts(out, "axes", f.axes.entries());
   emitBool(out, "check_units", f.check_units);
+  emitText(out, "retime", f.retime_uniformly ? "uniform" : "logged");
   emitNumber(out, "declination_deg", o.declination / deg);
   emitNumber(out, "tilt_window_s", o.tilt_window);
   emitNumber(out, "tilt_sigma_deg", o.tilt_sigma / deg);
   emitNumber(out, "inclination_deg", o.inclination / deg);
+  emitBool(out, "levelled_fit", o.levelled_fit);
+  emitBool(out, "horizontal_soft_iron", o.soft_iron);
+  emitNumber(out, "heading_interval_s", o.interval);
   out << YAML::EndMap;
 }
 

@@ -1,5 +1,6 @@
 #include "imucal/io/csv_reader.hpp"
 #include "imucal/io/csv_table.hpp"
+#include "imucal/io/retime.hpp"
 
 namespace imucal::io {
 
@@ -22,6 +23,7 @@ std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& f
     s.gyro = format.gyro_axes.apply(Vec3(csv.at(r, 4), csv.at(r, 5), csv.at(r, 6)) * gyro_factor);
   }
   if (format.check_units) checkImuUnits(path, samples, csv.lines, format);
+  if (format.retime_uniformly) retimeSamplesUniformly(samples);
   return samples;
 }
 

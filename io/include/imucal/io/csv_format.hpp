@@ -22,6 +22,8 @@ struct ImuCsvFormat {
   bool accel_reads_gravity = false;
   // Reject files whose magnitudes only make sense in another unit (see checkImuUnits).
   bool check_units = true;
+  // Replace the logged stamps by the sensor's uniform grid (see retime.hpp).
+  bool retime_uniformly = false;
 };
 
 struct HeadingCsvFormat {
@@ -38,6 +40,7 @@ struct MagCsvFormat {
   MagUnit unit = MagUnit::MicroTesla;
   AxisMap axes;  // sensor -> FRD body
   bool check_units = true;
+  bool retime_uniformly = false;  // see ImuCsvFormat
 };
 
 }  // namespace imucal::io
