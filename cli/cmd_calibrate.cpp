@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
 #include "commands.hpp"
 #include "imucal/core/calibrator.hpp"
@@ -49,6 +50,12 @@ nlohmann::json loadTruth(const std::string& path) {
   }
 }
 
+std::string fixed1(double v) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << v;
+  return s.str();
+}
+
 void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
   std::cout << "parameter        estimate        1-sigma   converged  t_conv_s" << (truth ? "      truth     error/sigma" : "")
             << '\n';
@@ -58,8 +65,7 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
     std::cout << std::left << std::setw(14) << r.names[j] << std::right << std::fixed << std::setprecision(1)
               << std::setw(12) << r.estimate(i) / unit.factor << ' ' << std::setw(12) << r.sigma(i) / unit.factor << ' '
               << std::left << std::setw(6) << unit.human << std::right << std::setw(5) << (r.converged[j] ? "yes" : "no")
-              << std::setw(10)
-              << (std::isfinite(r.convergence_time(i)) ? std::to_string(r.convergence_time(i)).substr(0, 5) : "-");
+              << std::setw(10) << (std::isfinite(r.convergence_time(i)) ? fixed1(r.convergence_time(i)) : "-");
     if (truth) {
       const auto& p = (*truth)["parameters"];
       if (p.contains(r.names[j]) && p[r.names[j]].contains("value_si")) {
