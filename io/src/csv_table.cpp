@@ -13,13 +13,6 @@ namespace imucal::io {
 
 namespace {
 
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t");
-  return s.substr(first, last - first + 1);
-}
-
 // Spreadsheets quote names and values ("t","ax"); the quotes are not part of the content.
 std::string_view unquote(std::string_view s) {
   s = trim(s);

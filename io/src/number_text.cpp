@@ -6,16 +6,12 @@
 
 namespace imucal::io {
 
-namespace {
-
 std::string_view trim(std::string_view s) {
   const auto first = s.find_first_not_of(" \t");
   if (first == std::string_view::npos) return {};
   const auto last = s.find_last_not_of(" \t");
   return s.substr(first, last - first + 1);
 }
-
-}  // namespace
 
 ParsedNumber parseNumber(std::string_view text) {
   text = trim(text);

@@ -22,4 +22,7 @@ std::string formatExact(double value);
 // At most `digits` significant digits, for people: hides float noise such as 0.15000000000000002.
 std::string formatRounded(double value, int digits = 12);
 
+// The text without leading and trailing spaces and tabs.
+std::string_view trim(std::string_view s);
+
 }  // namespace imucal::io
