@@ -17,6 +17,22 @@ struct StaticDetectorConfig {
   double min_still = 0.3;       // s; shorter still runs are called moving
 };
 
+// Running sums of accel and gyro over a window of samples, and the still test on them: the offline
+// detector and the daemon's live session detector share it.
+class StillWindow {
+ public:
+  void add(const ImuSample& s) { update(s, 1.0); }
+  void remove(const ImuSample& s) { update(s, -1.0); }
+  int count() const { return count_; }
+  bool isStill(const StaticDetectorConfig& config) const;
+
+ private:
+  void update(const ImuSample& s, double sign);
+  Eigen::Matrix<double, 6, 1> sum_ = Eigen::Matrix<double, 6, 1>::Zero();
+  Eigen::Matrix<double, 6, 1> sum_sq_ = Eigen::Matrix<double, 6, 1>::Zero();
+  int count_ = 0;
+};
+
 std::vector<bool> detectStill(const std::vector<ImuSample>& imu, const StaticDetectorConfig& config = {});
 
 struct Segment {

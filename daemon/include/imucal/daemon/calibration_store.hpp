@@ -1,0 +1,40 @@
+#pragma once
+// Keeps the last good calibration of each sensor on disk so a restarted daemon can publish it at once.
+// A file is written whole or not at all (temporary file, fsync, rename, fsync of the directory) and
+// carries a schema version and a checksum, so a torn or edited file is refused rather than trusted.
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace imucal::daemon {
+
+struct StoredCalibration {
+  std::string sensor_id;
+  double utime_s = 0.0;              // when it was made, s since the epoch
+  std::vector<std::string> names;    // parameter names (core's StateLayout::paramNames)
+  std::vector<double> values;        // SI
+  std::vector<double> sigmas;        // SI
+  std::vector<bool> converged;
+  std::string model;
+};
+
+class CalibrationStore {
+ public:
+  static constexpr int kSchemaVersion = 1;
+  explicit CalibrationStore(std::string directory) : directory_(std::move(directory)) {}
+
+  // Throws std::runtime_error naming the path when the file cannot be written durably.
+  void save(const StoredCalibration& calibration) const;
+  // Empty when there is none; throws std::runtime_error naming the path and the reason (bad checksum,
+  // unknown schema, malformed) when the file exists but cannot be trusted.
+  std::optional<StoredCalibration> load(const std::string& sensor_id) const;
+  std::string pathFor(const std::string& sensor_id) const;
+
+ private:
+  std::string directory_;
+};
+
+// FNV-1a 64-bit of the text: enough to catch torn writes and hand edits (not an adversary).
+std::string checksumOf(const std::string& text);
+
+}  // namespace imucal::daemon

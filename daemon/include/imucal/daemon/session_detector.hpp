@@ -1,0 +1,49 @@
+#pragma once
+// Finds calibration sessions in a live IMU stream by itself: still, a turn, still again. Keeps the samples
+// of the session (from the start of the first still run) so the calibration can run over all of them.
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include "imucal/core/static_detector.hpp"
+#include "imucal/core/types.hpp"
+
+namespace imucal::daemon {
+
+struct SessionDetectorConfig {
+  StaticDetectorConfig still;   // window and thresholds of "still"
+  double min_still = 3.0;       // s of still needed before and after the turn
+  double max_lead_still = 10.0; // s of the first still run kept (older samples are dropped)
+  double min_turn = 300.0 * 3.14159265358979323846 / 180.0;  // rad turned in the moving phase
+  double max_turn_time = 30.0;  // s: a longer moving phase is not a calibration turn
+};
+
+enum class SessionPhase { Waiting, LeadStill, Turning, TrailStill };
+
+struct Session {
+  std::vector<ImuSample> imu;
+  double turned = 0.0;  // rad
+};
+
+class SessionDetector {
+ public:
+  explicit SessionDetector(SessionDetectorConfig config = {}) : config_(config) {}
+  // Feeds one accepted sample; returns the session when its final still run is long enough.
+  std::optional<Session> push(const ImuSample& s);
+  // Starts over (after a gap in the stream, or when triggered by hand).
+  void reset();
+  SessionPhase phase() const { return phase_; }
+  double turned() const { return turned_; }
+
+ private:
+  SessionDetectorConfig config_;
+  SessionPhase phase_ = SessionPhase::Waiting;
+  std::deque<ImuSample> window_;  // the trailing still-test window
+  StillWindow stats_;
+  std::vector<ImuSample> buffer_;
+  double still_since_ = 0.0;
+  double turn_start_ = 0.0;
+  double turned_ = 0.0;
+};
+
+}  // namespace imucal::daemon
