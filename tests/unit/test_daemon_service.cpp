@@ -1,0 +1,117 @@
+// The daemon's service end to end without middleware: a simulated sensor streamed in, bad samples mixed
+// in, a calibration that matches the truth, persisted and restored by a new service instance.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <limits>
+#include <unistd.h>
+
+#include "imucal/core/units.hpp"
+#include "imucal/daemon/calibration_service.hpp"
+#include "imucal/sim/simulator.hpp"
+
+namespace imucal::daemon {
+namespace {
+
+namespace fs = std::filesystem;
+
+class DaemonService : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("imucal_service_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  ServiceConfig config() const {
+    ServiceConfig c;
+    c.filter.measurements.heading_sigma = 5.0 * units::deg;
+    c.state_dir = dir_.string();
+    return c;
+  }
+  fs::path dir_;
+};
+
+// Feeds IMU and heading in time order, as the node would receive them; returns the number of state changes.
+int stream(CalibrationService& service, const sim::SimOutput& out, const std::string& id, bool inject_bad) {
+  int changes = 0;
+  std::size_t h = 0;
+  for (std::size_t k = 0; k < out.imu.size(); ++k) {
+    while (h < out.heading.size() && out.heading[h].t <= out.imu[k].t) service.onHeading(out.heading[h++]);
+    if (inject_bad && k == 500) {
+      ImuSample nan = out.imu[k];
+      nan.accel.x() = std::numeric_limits<double>::quiet_NaN();
+      service.onImu(id, nan, static_cast<std::int64_t>(k));
+    }
+    changes += service.onImu(id, out.imu[k], static_cast<std::int64_t>(k)) ? 1 : 0;
+    if (inject_bad && k == 800) service.onImu(id, out.imu[k - 3], static_cast<std::int64_t>(k + 1));  // goes back
+  }
+  return changes;
+}
+
+TEST_F(DaemonService, CalibratesAStreamedSessionAndPersistsIt) {
+  sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 21);
+  // Lead still, turn, and a longer trailing still so the session's trailing run is complete.
+  sc.motion.segments.back().duration = 12.0;
+  const sim::SimOutput out = sim::simulate(sc, 21);
+  CalibrationService service(config());
+  const int changes = stream(service, out, "imu0", true);
+  EXPECT_GE(changes, 2);  // waiting -> calibrating -> converged
+  const SensorReport& r = service.reports().at("imu0");
+  ASSERT_EQ(r.state, CalibrationState::Converged) << r.failure;
+  ASSERT_TRUE(r.calibration.has_value());
+  EXPECT_FALSE(r.restored);
+  EXPECT_EQ(r.imu.not_finite, 1u);
+  EXPECT_EQ(r.imu.time_backwards, 1u);
+  const auto& c = *r.calibration;
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(std::abs(c.values[static_cast<std::size_t>(i)] - out.applied_errors.accel.bias(i)), 4.0 * c.sigmas[static_cast<std::size_t>(i)]) << i;
+    EXPECT_LT(std::abs(c.values[static_cast<std::size_t>(3 + i)] - out.applied_errors.gyro.bias(i)),
+              4.0 * c.sigmas[static_cast<std::size_t>(3 + i)]) << i;
+  }
+  // A new daemon restores it at once, marked as restored.
+  CalibrationService restarted(config());
+  ASSERT_TRUE(restarted.restore("imu0"));
+  const SensorReport& rr = restarted.reports().at("imu0");
+  EXPECT_TRUE(rr.restored);
+  EXPECT_EQ(rr.state, CalibrationState::Converged);
+  EXPECT_EQ(rr.calibration->values, c.values);
+}
+
+TEST_F(DaemonService, TwoSensorsOnOneChannelStaySeparate) {
+  sim::SimConfig a = sim::paperScenario(5.0 * units::deg, true, 31);
+  a.motion.segments.back().duration = 12.0;
+  const sim::SimOutput out = sim::simulate(a, 31);
+  sim::SimConfig b_cfg = a;
+  b_cfg.imu.errors.accel.bias = -a.imu.errors.accel.bias;
+  const sim::SimOutput out_b = sim::simulate(b_cfg, 32);
+  CalibrationService service(config());
+  std::size_t h = 0;
+  for (std::size_t k = 0; k < out.imu.size(); ++k) {
+    while (h < out.heading.size() && out.heading[h].t <= out.imu[k].t) service.onHeading(out.heading[h++]);
+    service.onImu("a", out.imu[k], static_cast<std::int64_t>(k));
+    service.onImu("b", out_b.imu[k], static_cast<std::int64_t>(k));
+  }
+  const auto& ra = service.reports().at("a");
+  const auto& rb = service.reports().at("b");
+  ASSERT_TRUE(ra.calibration && rb.calibration);
+  EXPECT_LT(std::abs(ra.calibration->values[0] - a.imu.errors.accel.bias(0)), 4.0 * ra.calibration->sigmas[0]);
+  EXPECT_LT(std::abs(rb.calibration->values[0] + a.imu.errors.accel.bias(0)), 4.0 * rb.calibration->sigmas[0]);
+}
+
+TEST_F(DaemonService, NoSessionWhenTheImuStopsMidTurn) {
+  const sim::SimOutput out = sim::simulate(sim::paperScenario(5.0 * units::deg, true, 41), 41);
+  CalibrationService service(config());
+  for (std::size_t k = 0; k < out.imu.size() && out.imu[k].t < 15.0; ++k) service.onImu("imu0", out.imu[k], -1);
+  EXPECT_EQ(service.reports().at("imu0").state, CalibrationState::Calibrating);
+  EXPECT_FALSE(service.reports().at("imu0").calibration.has_value());
+  // The sensor comes back after a gap: the interrupted session is dropped, not calibrated.
+  for (std::size_t k = 0; k < out.imu.size(); ++k) {
+    if (out.imu[k].t >= 25.0) service.onImu("imu0", out.imu[k], -1);
+  }
+  EXPECT_EQ(service.reports().at("imu0").imu.gaps, 1u);
+  EXPECT_FALSE(service.reports().at("imu0").calibration.has_value());
+}
+
+}  // namespace
+}  // namespace imucal::daemon
