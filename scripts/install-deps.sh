@@ -6,6 +6,9 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # LCM: C/C++ library (lcm.pc needs glib), lcm-gen, lcm.jar + lcm-spy, a JDK for the types jar,
+  # and jchart2d, which lcm-spy's charts need but liblcm-java does not pull in (see scripts/lcm-spy).
+  liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java
 )
 
 missing=()
