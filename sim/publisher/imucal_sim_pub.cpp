@@ -1,0 +1,92 @@
+// imucal-sim-pub: publishes a simulated sensor on the daemon's LCM channels, in real time or faster, and
+// writes the truth so a test can compare the daemon's calibration with it. Stands in for the drivers.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <thread>
+
+#include "imucal/io/config.hpp"
+#include "imucal/io/json_output.hpp"
+#include "imucal/lcmtypes.hpp"
+#include "imucal/sim/simulator.hpp"
+
+namespace {
+
+struct Options {
+  std::string config;
+  std::uint64_t seed = 1;
+  std::string lcm_url;
+  double speed = 1.0;  // 1 = real time, 10 = ten times faster, 0 = as fast as possible
+  std::string truth;
+  std::string sensor_id = "imu0";
+  std::string imu_channel = "IMUCAL_IMU";
+  std::string heading_channel = "IMUCAL_HEADING";
+  double start_delay = 0.5;  // s before the first message, so subscribers are up
+};
+
+std::int64_t utimeOf(double epoch_s, double t) { return static_cast<std::int64_t>(std::llround((epoch_s + t) * 1e6)); }
+
+int run(const Options& o) {
+  const imucal::sim::SimConfig config = imucal::io::loadSimConfig(o.config);
+  const imucal::sim::SimOutput out = imucal::sim::simulate(config, o.seed);
+  if (!o.truth.empty()) imucal::io::writeJsonFile(o.truth, imucal::io::truthToJson(config, out, o.seed));
+  lcm::LCM lcm(o.lcm_url);
+  if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + o.lcm_url + "'");
+  std::this_thread::sleep_for(std::chrono::duration<double>(o.start_delay));
+  const auto wall0 = std::chrono::steady_clock::now();
+  const double epoch = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  std::size_t h = 0;
+  for (std::size_t k = 0; k < out.imu.size(); ++k) {
+    const imucal::ImuSample& s = out.imu[k];
+    if (o.speed > 0.0) std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s.t / o.speed)));
+    while (h < out.heading.size() && out.heading[h].t <= s.t) {
+      imucal::heading_sample_t hm{};
+      hm.utime = utimeOf(epoch, out.heading[h].t);
+      hm.heading = out.heading[h].heading;
+      hm.heading_sigma = config.heading.noise;
+      hm.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
+      lcm.publish(o.heading_channel, &hm);
+      ++h;
+    }
+    imucal::imu_sample_t m{};
+    m.utime = utimeOf(epoch, s.t);
+    m.seq = static_cast<std::int64_t>(k);
+    m.device_time_us = static_cast<std::int64_t>(std::llround(s.t * 1e6));
+    for (int i = 0; i < 3; ++i) {
+      m.accel[i] = s.accel(i);
+      m.gyro[i] = s.gyro(i);
+    }
+    m.temperature_c = std::nan("");
+    m.status = imucal::imu_sample_t::STATUS_TEMPERATURE_INVALID;
+    m.sensor_id = o.sensor_id;
+    lcm.publish(o.imu_channel, &m);
+  }
+  spdlog::info("imucal-sim-pub: published {} IMU and {} heading samples", out.imu.size(), h);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"imucal-sim-pub: publish a simulated IMU and heading sensor on LCM"};
+  Options o;
+  app.add_option("--config", o.config, "Simulation config (YAML)")->required()->check(CLI::ExistingFile);
+  app.add_option("--seed", o.seed)->capture_default_str();
+  app.add_option("--lcm-url", o.lcm_url, "LCM provider URL (default: LCM's own default)");
+  app.add_option("--speed", o.speed, "1 = real time, N = N times faster, 0 = as fast as possible")->capture_default_str();
+  app.add_option("--truth", o.truth, "Write the truth of every applied error here (JSON)");
+  app.add_option("--sensor-id", o.sensor_id)->capture_default_str();
+  app.add_option("--imu-channel", o.imu_channel)->capture_default_str();
+  app.add_option("--heading-channel", o.heading_channel)->capture_default_str();
+  app.add_option("--start-delay", o.start_delay, "Seconds to wait before publishing")->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return run(o);
+  } catch (const std::exception& e) {
+    spdlog::critical("imucal-sim-pub: {}", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Multi-process end to end, inside a private network namespace whose only interface is lo:
+#   imucal-sim-pub -> LCM (multicast on lo) -> imucald -> imucal-cal-check (against the truth),
+# then kill -9 of the daemon and a restart that must publish the persisted calibration, marked restored.
+# Usage: daemon_e2e.sh BUILD_DIR SOURCE_DIR [SPEED]
+set -euo pipefail
+if [ -z "${IMUCAL_IN_NETNS:-}" ]; then
+  exec unshare -n env IMUCAL_IN_NETNS=1 bash "$0" "$@"
+fi
+build="$1"; src="$2"; speed="${3:-10}"
+ip link set lo up
+ip route add 224.0.0.0/4 dev lo
+url="udpm://239.255.76.67:7667?ttl=0"
+tmp="$(mktemp -d)"
+pids=()
+cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm -rf "$tmp"; }
+trap cleanup EXIT
+mkdir -p "$tmp/state"
+
+"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state" --config "$src/configs/paper-calibrate.yaml" \
+  > "$tmp/daemon.log" 2>&1 &
+daemon=$!; pids+=("$daemon")
+"$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 120 &
+check=$!; pids+=("$check")
+"$build/sim/imucal-sim-pub" --config "$src/configs/paper-sim.yaml" --seed 5 --lcm-url "$url" --speed "$speed" \
+  --truth "$tmp/truth.json" --start-delay 1
+rc=0; wait "$check" || rc=$?
+if [ "$rc" -ne 0 ]; then echo "live calibration check failed ($rc)"; cat "$tmp/daemon.log"; exit 1; fi
+test -s "$tmp/state/calibration-imu0.json" || { echo "no persisted calibration"; exit 1; }
+
+echo "== kill -9 of the daemon, restart: the persisted calibration comes back at once"
+kill -9 "$daemon"; wait "$daemon" 2>/dev/null || true
+"$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 30 --restored &
+check=$!; pids+=("$check")
+sleep 1
+"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state" --restore imu0 > "$tmp/daemon2.log" 2>&1 &
+pids+=("$!")
+rc=0; wait "$check" || rc=$?
+if [ "$rc" -ne 0 ]; then echo "restore check failed ($rc)"; cat "$tmp/daemon2.log"; exit 1; fi
+echo "end to end: 2 passed, 0 failed"
