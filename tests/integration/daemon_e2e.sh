@@ -23,7 +23,7 @@ daemon=$!; pids+=("$daemon")
 "$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 120 &
 check=$!; pids+=("$check")
 "$build/sim/imucal-sim-pub" --config "$src/configs/paper-sim.yaml" --seed 5 --lcm-url "$url" --speed "$speed" \
-  --truth "$tmp/truth.json" --start-delay 1
+  --truth "$tmp/truth.json" --start-delay 2
 rc=0; wait "$check" || rc=$?
 if [ "$rc" -ne 0 ]; then echo "live calibration check failed ($rc)"; cat "$tmp/daemon.log"; exit 1; fi
 test -s "$tmp/state/calibration-imu0.json" || { echo "no persisted calibration"; exit 1; }
