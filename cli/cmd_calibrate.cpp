@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "commands.hpp"
+#include "lcm_log_input.hpp"
 #include "imucal/core/calibrator.hpp"
 #include "imucal/core/magnetometer_heading.hpp"
 #include "imucal/core/units.hpp"
@@ -23,6 +24,8 @@ namespace imucal::cli {
 namespace {
 
 struct CalibrateArgs {
+  std::string lcm_log;
+  std::string sensor_id = "imu0";
   std::string imu;
   std::string heading;
   std::string mag;
@@ -84,8 +87,18 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
 void runCalibrateCommand(const CalibrateArgs& args) {
   io::CalibrateConfig config;
   if (!args.config.empty()) config = io::loadCalibrateConfig(args.config);
-  const std::vector<ImuSample> imu = io::readImuCsv(args.imu, config.imu);
+  if (args.imu.empty() == args.lcm_log.empty()) throw std::invalid_argument("give either --imu or --lcm-log");
+  std::vector<ImuSample> imu;
   std::vector<HeadingSample> heading;
+  if (!args.lcm_log.empty()) {
+    LcmLogInput log = readLcmLog(args.lcm_log, "IMUCAL_IMU", "IMUCAL_HEADING", args.sensor_id);
+    std::cout << args.lcm_log << ": " << log.imu.size() << " IMU and " << log.heading.size() << " heading samples of "
+              << args.sensor_id << " (" << log.events << " events)\n";
+    imu = std::move(log.imu);
+    heading = std::move(log.heading);
+  } else {
+    imu = io::readImuCsv(args.imu, config.imu);
+  }
   if (!args.heading.empty() && !args.mag.empty()) {
     throw std::invalid_argument("give either --heading or --mag, not both");
   }
@@ -103,7 +116,8 @@ void runCalibrateCommand(const CalibrateArgs& args) {
 
   const CalibrationResult result = calibrate(imu, heading, config.filter);
   nlohmann::json json = io::resultToJson(result);
-  json["inputs"] = {{"imu", args.imu}, {"heading", args.heading}, {"mag", args.mag}, {"config", args.config}};
+  json["inputs"] = {{"imu", args.imu},   {"lcm_log", args.lcm_log}, {"heading", args.heading},
+                    {"mag", args.mag},   {"config", args.config}};
   json["effective_config_yaml"] = io::calibrateConfigToYaml(config);
   io::writeJsonFile(args.out, json);
   const std::string history = args.history.empty() ? defaultHistoryPath(args.out) : args.history;
@@ -120,7 +134,9 @@ void runCalibrateCommand(const CalibrateArgs& args) {
 void addCalibrateCommand(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();
   CLI::App* cmd = app.add_subcommand("calibrate", "Estimate IMU biases (and more) from a recording");
-  cmd->add_option("--imu", args->imu, "IMU CSV")->required()->check(CLI::ExistingFile);
+  cmd->add_option("--imu", args->imu, "IMU CSV")->check(CLI::ExistingFile);
+  cmd->add_option("--lcm-log", args->lcm_log, "LCM log (lcm-logger) with IMUCAL_IMU / IMUCAL_HEADING messages")->check(CLI::ExistingFile);
+  cmd->add_option("--sensor-id", args->sensor_id, "Sensor to take from the LCM log")->capture_default_str();
   cmd->add_option("--heading", args->heading, "Heading CSV (rad clockwise from north unless the config says)")->check(CLI::ExistingFile);
   cmd->add_option("--mag", args->mag, "Magnetometer CSV, turned into heading")->check(CLI::ExistingFile);
   cmd->add_option("--config", args->config, "Calibration config (YAML): columns, units, axes, noise, model")->check(CLI::ExistingFile);

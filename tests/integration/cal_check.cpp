@@ -31,12 +31,15 @@ int main(int argc, char** argv) {
   std::string url, truth_path, sensor = "imu0", channel = "IMUCAL_CALIBRATION";
   double timeout = 60.0;
   bool restored = false;
+  std::string save, same_as;
   app.add_option("--lcm-url", url);
   app.add_option("--truth", truth_path)->required();
   app.add_option("--sensor-id", sensor);
   app.add_option("--channel", channel);
   app.add_option("--timeout", timeout);
   app.add_flag("--restored", restored, "Wait for a calibration restored from disk");
+  app.add_option("--save", save, "Write the calibration's values and sigmas here (JSON)");
+  app.add_option("--same-as", same_as, "Also require the values of this --save file (a replay must match)");
   CLI11_PARSE(app, argc, argv);
 
   lcm::LCM lcm(url);
@@ -68,5 +71,14 @@ int main(int argc, char** argv) {
     row(std::string("gyro_bias_") + axes[i], m.gyro_bias[i], m.gyro_bias_sigma[i], M_PI / 180.0 / 3600.0, "deg/h");
   }
   std::cout << (restored ? "restored " : "") << "calibration (" << m.model << "): " << (ok ? "within 4 sigma of the truth" : "OFF the truth") << '\n';
+  if (!save.empty()) std::ofstream(save) << nlohmann::json{{"values", m.values}, {"sigmas", m.sigmas}}.dump() << '\n';
+  if (!same_as.empty()) {
+    std::ifstream ref_in(same_as);
+    const auto ref = nlohmann::json::parse(ref_in)["values"].get<std::vector<double>>();
+    bool same = ref.size() == m.values.size();
+    for (std::size_t i = 0; same && i < ref.size(); ++i) same = std::abs(ref[i] - m.values[i]) <= 1e-9 * (1.0 + std::abs(ref[i]));
+    std::cout << "same as " << same_as << ": " << (same ? "yes" : "NO") << '\n';
+    ok = ok && same;
+  }
   return ok ? 0 : 1;
 }

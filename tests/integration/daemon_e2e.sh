@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Multi-process end to end, inside a private network namespace whose only interface is lo:
 #   imucal-sim-pub -> LCM (multicast on lo) -> imucald -> imucal-cal-check (against the truth),
-# then kill -9 of the daemon and a restart that must publish the persisted calibration, marked restored.
+# then kill -9 of the daemon and a restart that must publish the persisted calibration, marked restored;
+# then the input recorded with lcm-logger is replayed with lcm-logplayer into a fresh daemon, which must
+# publish the same calibration, and `imucal calibrate --lcm-log` must calibrate the log within 4 sigma.
 # Usage: daemon_e2e.sh BUILD_DIR SOURCE_DIR [SPEED]
 set -euo pipefail
 if [ -z "${IMUCAL_IN_NETNS:-}" ]; then
@@ -20,13 +22,16 @@ mkdir -p "$tmp/state"
 "$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state" --config "$src/configs/paper-calibrate.yaml" \
   > "$tmp/daemon.log" 2>&1 &
 daemon=$!; pids+=("$daemon")
-"$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 120 &
+lcm-logger --lcm-url "$url" -c 'IMUCAL_(IMU|HEADING)' -f "$tmp/input.lcmlog" > /dev/null 2>&1 &
+logger=$!; pids+=("$logger")
+"$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 120 --save "$tmp/live.json" &
 check=$!; pids+=("$check")
 "$build/sim/imucal-sim-pub" --config "$src/configs/paper-sim.yaml" --seed 5 --lcm-url "$url" --speed "$speed" \
   --truth "$tmp/truth.json" --start-delay 2
 rc=0; wait "$check" || rc=$?
 if [ "$rc" -ne 0 ]; then echo "live calibration check failed ($rc)"; cat "$tmp/daemon.log"; exit 1; fi
 test -s "$tmp/state/calibration-imu0.json" || { echo "no persisted calibration"; exit 1; }
+sleep 0.5; kill -INT "$logger"; wait "$logger" 2>/dev/null || true
 
 echo "== kill -9 of the daemon, restart: the persisted calibration comes back at once"
 kill -9 "$daemon"; wait "$daemon" 2>/dev/null || true
@@ -37,4 +42,21 @@ sleep 1
 pids+=("$!")
 rc=0; wait "$check" || rc=$?
 if [ "$rc" -ne 0 ]; then echo "restore check failed ($rc)"; cat "$tmp/daemon2.log"; exit 1; fi
-echo "end to end: 2 passed, 0 failed"
+
+echo "== replay of the recorded input into a fresh daemon: the same calibration"
+mkdir -p "$tmp/state3"
+"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state3" --imu-channel IMUCAL_IMU \
+  --calibration-channel IMUCAL_CALIBRATION_REPLAY > "$tmp/daemon3.log" 2>&1 &
+pids+=("$!")
+"$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 60 \
+  --channel IMUCAL_CALIBRATION_REPLAY --same-as "$tmp/live.json" &
+check=$!; pids+=("$check")
+sleep 2
+lcm-logplayer --lcm-url "$url" -s "$speed" "$tmp/input.lcmlog"
+rc=0; wait "$check" || rc=$?
+if [ "$rc" -ne 0 ]; then echo "replay check failed ($rc)"; cat "$tmp/daemon3.log"; exit 1; fi
+
+echo "== imucal calibrate --lcm-log on the recording"
+"$build/cli/imucal" calibrate --lcm-log "$tmp/input.lcmlog" --config "$src/configs/paper-calibrate.yaml" \
+  --truth "$tmp/truth.json" --out "$tmp/offline.json"
+echo "end to end: 3 passed, 0 failed"
