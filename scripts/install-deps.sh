@@ -9,6 +9,8 @@ packages=(
   # LCM: C/C++ library (lcm.pc needs glib), lcm-gen, lcm.jar + lcm-spy, a JDK for the types jar,
   # and jchart2d, which lcm-spy's charts need but liblcm-java does not pull in (see scripts/lcm-spy).
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java
+  # sd_notify readiness and watchdog for imucald under systemd.
+  libsystemd-dev
 )
 
 missing=()

@@ -4,7 +4,10 @@
 #include <signal.h>
 #include <spdlog/spdlog.h>
 #include <sys/signalfd.h>
+#include <systemd/sd-daemon.h>
 #include <unistd.h>
+
+#include <chrono>
 
 #include <CLI/CLI.hpp>
 #include <exception>
@@ -54,9 +57,20 @@ int run(const Options& o) {
   }
   const int sig_fd = blockTerminationSignals();
   spdlog::info("imucald: listening on {} and {}", o.node.imu_channel, o.node.heading_channel);
+  // Under systemd (Type=notify): ready once subscribed; the watchdog is fed from the loop, so a daemon
+  // stuck in a handler is restarted. Both are no-ops without NOTIFY_SOCKET.
+  sd_notify(0, "READY=1");
+  std::uint64_t watchdog_us = 0;
+  const bool watchdog = sd_watchdog_enabled(0, &watchdog_us) > 0;
+  const auto watchdog_period = std::chrono::microseconds(watchdog_us / 2);
+  auto last_ping = std::chrono::steady_clock::now();
   pollfd fds[2] = {{lcm.getFileno(), POLLIN, 0}, {sig_fd, POLLIN, 0}};
   while (true) {
-    const int n = poll(fds, 2, 500);
+    if (watchdog && std::chrono::steady_clock::now() - last_ping >= watchdog_period) {
+      sd_notify(0, "WATCHDOG=1");
+      last_ping = std::chrono::steady_clock::now();
+    }
+    const int n = poll(fds, 2, 200);
     if (n < 0 && errno != EINTR) throw std::runtime_error("poll failed");
     if (n > 0 && (fds[1].revents & POLLIN)) {
       signalfd_siginfo info{};
@@ -67,6 +81,7 @@ int run(const Options& o) {
     }
     if (n > 0 && (fds[0].revents & POLLIN)) lcm.handle();
   }
+  sd_notify(0, "STOPPING=1");
   close(sig_fd);
   return 0;
 }
