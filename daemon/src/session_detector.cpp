@@ -8,18 +8,33 @@ void SessionDetector::reset() {
   phase_ = SessionPhase::Waiting;
   window_.clear();
   stats_ = StillWindow();
+  block_count_ = 0;
+  still_ = false;
   buffer_.clear();
   turned_ = 0.0;
 }
 
+void SessionDetector::dropBefore(double t) {
+  while (!buffer_.empty() && buffer_.front().t < t) buffer_.pop_front();
+}
+
 std::optional<Session> SessionDetector::push(const ImuSample& s) {
-  window_.push_back(s);
-  stats_.add(s);
-  while (!window_.empty() && window_.front().t < s.t - config_.still.window) {
-    stats_.remove(window_.front());
-    window_.pop_front();
+  if (block_count_ == 0) block_sum_ = ImuSample{s.t, Vec3::Zero(), Vec3::Zero()};
+  block_sum_.accel += s.accel;
+  block_sum_.gyro += s.gyro;
+  ++block_count_;
+  if (s.t - block_sum_.t >= config_.block || config_.block <= 0.0) {
+    ImuSample mean{s.t, block_sum_.accel / block_count_, block_sum_.gyro / block_count_};
+    block_count_ = 0;
+    window_.push_back(mean);
+    stats_.add(mean);
+    while (!window_.empty() && window_.front().t < s.t - config_.still.window) {
+      stats_.remove(window_.front());
+      window_.pop_front();
+    }
+    still_ = stats_.isStill(config_.still);
   }
-  const bool still = stats_.isStill(config_.still);
+  const bool still = still_;
   buffer_.push_back(s);
 
   switch (phase_) {
@@ -27,18 +42,17 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
       if (still) {
         phase_ = SessionPhase::LeadStill;
         still_since_ = s.t;
-        // Keep only the still run's own samples.
-        buffer_.assign(window_.begin(), window_.end());
+        // Keep only the still run's own samples: those of the still window.
+        dropBefore(s.t - config_.still.window);
       } else {
-        buffer_.clear();
+        // Only the last window's worth can become the start of a still run.
+        dropBefore(s.t - config_.still.window);
       }
       break;
     case SessionPhase::LeadStill:
       if (still) {
         // Drop the oldest still samples beyond what a calibration needs.
-        std::size_t drop = 0;
-        while (drop < buffer_.size() && buffer_[drop].t < s.t - config_.max_lead_still) ++drop;
-        if (drop > 0) buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<long>(drop));
+        dropBefore(s.t - config_.max_lead_still);
       } else if (s.t - still_since_ >= config_.min_still) {
         phase_ = SessionPhase::Turning;
         turn_start_ = s.t;
@@ -65,14 +79,15 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
         if (turned_ < config_.min_turn) {
           // Not a calibration turn: this still run can lead the next session.
           phase_ = SessionPhase::LeadStill;
-          std::size_t drop = 0;
-          while (drop < buffer_.size() && buffer_[drop].t < still_since_ - config_.still.window) ++drop;
-          buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<long>(drop));
+          dropBefore(still_since_ - config_.still.window);
           turned_ = 0.0;
           return std::nullopt;
         }
-        Session session{std::move(buffer_), turned_};
-        reset();
+        Session session{std::vector<ImuSample>(buffer_.begin(), buffer_.end()), turned_};
+        // The trailing still run goes on and may lead the next session.
+        phase_ = SessionPhase::LeadStill;
+        dropBefore(still_since_ - config_.still.window);
+        turned_ = 0.0;
         return session;
       }
       break;

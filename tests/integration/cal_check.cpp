@@ -19,8 +19,13 @@ struct Waiter {
   std::string sensor_id;
   bool want_restored = false;
   std::optional<imucal::calibration_t> found;
-  void on(const lcm::ReceiveBuffer*, const std::string&, const imucal::calibration_t* m) {
-    if (m->sensor_id == sensor_id && m->state == imucal::calibration_t::STATE_CONVERGED && m->restored == want_restored) found = *m;
+  double latency_ms = 0.0;
+  void on(const lcm::ReceiveBuffer* rbuf, const std::string&, const imucal::calibration_t* m) {
+    if (found || m->sensor_id != sensor_id || m->state != imucal::calibration_t::STATE_CONVERGED || m->restored != want_restored) return;
+    found = *m;
+    // utime is the data time of the sample that completed the session; in a real-time replay it is the
+    // wall time that sample was published.
+    latency_ms = static_cast<double>(rbuf->recv_utime - m->utime) * 1e-3;
   }
 };
 
@@ -44,7 +49,7 @@ int main(int argc, char** argv) {
 
   lcm::LCM lcm(url);
   if (!lcm.good()) return 3;
-  Waiter w{sensor, restored, std::nullopt};
+  Waiter w{sensor, restored, std::nullopt, 0.0};
   lcm.subscribe(channel, &Waiter::on, &w);
   const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout);
   while (!w.found && std::chrono::steady_clock::now() < end) lcm.handleTimeout(100);
@@ -70,6 +75,7 @@ int main(int argc, char** argv) {
   for (int i = 0; i < 3; ++i) {
     row(std::string("gyro_bias_") + axes[i], m.gyro_bias[i], m.gyro_bias_sigma[i], M_PI / 180.0 / 3600.0, "deg/h");
   }
+  if (!restored) std::cout << "latency from the session's last sample to the calibration: " << std::setprecision(1) << w.latency_ms << " ms\n";
   std::cout << (restored ? "restored " : "") << "calibration (" << m.model << "): " << (ok ? "within 4 sigma of the truth" : "OFF the truth") << '\n';
   if (!save.empty()) std::ofstream(save) << nlohmann::json{{"values", m.values}, {"sigmas", m.sigmas}}.dump() << '\n';
   if (!same_as.empty()) {
