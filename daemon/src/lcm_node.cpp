@@ -158,7 +158,7 @@ imucal::calibration_t LcmNode::toMessage(const SensorReport& r, std::int64_t uti
   m.values = c.values;
   m.sigmas = c.sigmas;
   m.converged.assign(c.converged.begin(), c.converged.end());
-  m.convergence_time_s.assign(c.names.size(), -1.0);  // not kept in the store
+  m.convergence_time_s = c.convergence_time_s;
   for (std::size_t i = 0; i < c.names.size(); ++i) {
     const std::string& n = c.names[i];
     const int axis = n.back() - 'x';

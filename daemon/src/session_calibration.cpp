@@ -1,5 +1,6 @@
 #include "imucal/daemon/session_calibration.hpp"
 
+#include <cmath>
 #include <exception>
 
 namespace imucal::daemon {
@@ -40,6 +41,8 @@ SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<
   c.values.assign(result.estimate.data(), result.estimate.data() + result.estimate.size());
   c.sigmas.assign(result.sigma.data(), result.sigma.data() + result.sigma.size());
   c.converged = result.converged;
+  for (Eigen::Index j = 0; j < result.convergence_time.size(); ++j)
+    c.convergence_time_s.push_back(std::isfinite(result.convergence_time(j)) ? result.convergence_time(j) : -1.0);
   c.model = std::to_string(result.layout.size) + "-state ESKF, " + std::to_string(result.passes_run) + " passes" +
             (filter.measurements.heading ? ", heading" : ", no heading");
   if (!state_dir.empty()) {

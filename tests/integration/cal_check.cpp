@@ -26,13 +26,24 @@ struct Waiter {
   std::int64_t first_imu_utime = -1;  // data time of the first IMU sample this checker saw
   std::optional<imucal::calibration_t> found;
   double latency_ms = 0.0;
+  int last_state = -1;
+  std::int64_t first_recv = -1;
   void on(const lcm::ReceiveBuffer* rbuf, const std::string&, const imucal::calibration_t* m) {
+    if (m->sensor_id == sensor_id && m->state != last_state) {
+      // The daemon's progress as it happens: waiting -> calibrating -> converged (or failed).
+      static const char* names[] = {"waiting", "calibrating", "converged", "failed"};
+      if (first_recv < 0) first_recv = rbuf->recv_utime;
+      std::cout << "  +" << std::fixed << std::setprecision(1) << static_cast<double>(rbuf->recv_utime - first_recv) * 1e-6
+                << " s  " << sensor_id << ": " << (m->state >= 0 && m->state <= 3 ? names[m->state] : "?")
+                << (m->restored ? " (restored)" : "") << '\n';
+      last_state = m->state;
+    }
     if (found || m->sensor_id != sensor_id || m->state != imucal::calibration_t::STATE_CONVERGED || m->restored != want_restored) return;
     if (only_new && (first_imu_utime < 0 || m->calibrated_utime <= first_imu_utime)) return;  // an older one again
     found = *m;
-    // utime is the data time of the sample that completed the session; in a real-time replay it is the
-    // wall time that sample was published.
-    latency_ms = static_cast<double>(rbuf->recv_utime - m->utime) * 1e-3;
+    // calibrated_utime is the data time of the sample that completed the session; in real time it is
+    // the wall time that sample was published (faster than real time the difference means nothing).
+    latency_ms = static_cast<double>(rbuf->recv_utime - m->calibrated_utime) * 1e-3;
   }
   void onImu(const lcm::ReceiveBuffer*, const std::string&, const imucal::imu_sample_t* m) {
     if (first_imu_utime < 0) first_imu_utime = m->utime;
@@ -108,21 +119,32 @@ int main(int argc, char** argv) {
   const nlohmann::json truth = nlohmann::json::parse(in);
   const auto& m = *w.found;
   bool ok = true;
-  std::cout << "parameter       estimate      1-sigma        truth   error/sigma\n";
+  std::cout << "parameter       estimate      1-sigma        truth   error/sigma  converged at\n";
   const auto row = [&](const std::string& name, double est, double sigma, double unit, const char* label) {
     const double t = truth["parameters"][name]["value_si"].get<double>();
     const double z = (est - t) / sigma;
     ok = ok && std::abs(z) <= 4.0;
     std::cout << std::left << std::setw(14) << name << std::right << std::fixed << std::setprecision(1) << std::setw(11)
               << est / unit << std::setw(11) << sigma / unit << ' ' << std::left << std::setw(5) << label << std::right
-              << std::setw(9) << t / unit << std::setw(10) << std::setprecision(2) << z << '\n';
+              << std::setw(9) << t / unit << std::setw(10) << std::setprecision(2) << z;
+    for (std::size_t i = 0; i < m.param_names.size(); ++i) {
+      if (m.param_names[i] != name) continue;
+      if (m.converged[i]) {
+        std::cout << std::setw(11) << std::setprecision(1) << m.convergence_time_s[i] << " s";
+      } else {
+        std::cout << std::setw(13) << "no";
+      }
+    }
+    std::cout << '\n';
   };
   const char* axes = "xyz";
   for (int i = 0; i < 3; ++i) row(std::string("accel_bias_") + axes[i], m.accel_bias[i], m.accel_bias_sigma[i], 9.80665e-6, "ug");
   for (int i = 0; i < 3; ++i) {
     row(std::string("gyro_bias_") + axes[i], m.gyro_bias[i], m.gyro_bias_sigma[i], M_PI / 180.0 / 3600.0, "deg/h");
   }
-  if (!restored) std::cout << "latency from the session's last sample to the calibration: " << std::setprecision(1) << w.latency_ms << " ms\n";
+  if (!restored && w.latency_ms >= 0.0 && w.latency_ms < 60e3) {
+    std::cout << "latency from the session's last sample to the calibration: " << std::setprecision(1) << w.latency_ms << " ms\n";
+  }
   std::cout << (restored ? "restored " : "") << "calibration (" << m.model << "): " << (ok ? "within 4 sigma of the truth" : "OFF the truth") << '\n';
   if (!save.empty()) std::ofstream(save) << nlohmann::json{{"values", m.values}, {"sigmas", m.sigmas}}.dump() << '\n';
   if (!same_as.empty()) {
