@@ -44,9 +44,10 @@ pids+=("$!")
   --expect-report "$tmp/published.json" &
 check=$!; pids+=("$check")
 sleep 2
-# In real time: above it, lcm-logplayer 1.3.1 drops events whenever it falls behind its schedule (on a
-# busy 2-core machine 3x lost 21 of 6002, 10x 200 to 1300), and a replay must lose nothing.
-lcm-logplayer --lcm-url "$url" -s 1 "$tmp/input.lcmlog"
+# At the sensor's own rate (the log was recorded at SPEED times it): faster, lcm-logplayer 1.3.1 drops
+# events whenever it falls behind its schedule (on a busy 2-core machine 3x lost 21 of 6002, 10x 200 to
+# 1300), and a replay must lose nothing.
+lcm-logplayer --lcm-url "$url" -s "$(awk -v s="$speed" 'BEGIN { print 1 / s }')" "$tmp/input.lcmlog"
 rc=0; wait "$check" || rc=$?
 if [ "$rc" -ne 0 ]; then echo "replay check failed ($rc)"; cat "$tmp/daemon3.log"; exit 1; fi
 

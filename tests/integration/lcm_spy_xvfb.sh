@@ -25,9 +25,12 @@ window="$(DISPLAY="$display" xwininfo -root -tree | awk '/LCM Spy/ {print $1; ex
 [ -n "$window" ] || { echo "FAILED: no lcm-spy window"; cat "$tmp/spy.log"; exit 1; }
 DISPLAY="$display" import -window "$window" "$png"
 echo "screenshot: $png"
-# Upscaled for OCR: Spy's table font is small.
-convert "$png" -resize 300% -colorspace Gray "$tmp/ocr.png"
-tesseract "$tmp/ocr.png" "$tmp/ocr" > /dev/null 2>&1
+# OCR of the Channel and Type columns below the header (their share of Spy's default window), upscaled
+# (the table font is small) and thresholded so the grid lines vanish and only the text stays.
+read -r w h < <(identify -format '%w %h\n' "$png")
+crop="$((w * 41 / 100))x$((h * 145 / 1000))+0+$((h * 3 / 100))"
+convert "$png" -crop "$crop" +repage -colorspace Gray -resize 400% -threshold 55% "$tmp/ocr.png"
+tesseract "$tmp/ocr.png" "$tmp/ocr" --psm 4 > /dev/null 2>&1
 # OCR drops underscores and spaces now and then: compare letters and digits only, lower case, and find
 # each channel's row (by the end of its name) with its type's name on it.
 tr -cd '[:alnum:]\n' < "$tmp/ocr.txt" | tr '[:upper:]' '[:lower:]' > "$tmp/ocr.norm"
