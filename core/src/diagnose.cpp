@@ -16,6 +16,7 @@ const char* verdictName(Verdict v) {
     case Verdict::NotSignificant: return "not significant";
     case Verdict::Unobservable: return "unobservable";
     case Verdict::InModel: return "in the model";
+    case Verdict::Implausible: return "implausible";
   }
   return "?";
 }
@@ -55,6 +56,12 @@ struct Candidate {
   QuadraticFit fit;  // deterministic ones
   double margin = -std::numeric_limits<double>::infinity();  // lr - threshold
 };
+
+bool plausible(const Effect& e, const EffectTest& t) {
+  for (Eigen::Index i = 0; i < t.value.size(); ++i)
+    if (t.observable[static_cast<std::size_t>(i)] && std::abs(t.value(i)) > kImplausible * e.plausible) return false;
+  return true;
+}
 
 EffectTest blankTest(const Effect& e) {
   EffectTest t;
@@ -192,6 +199,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   out.initial_gap = gap;
   // What the motion cannot see does not change with the effects added: tested once.
   std::vector<EffectTest> unobservable;
+  std::vector<std::string> excluded;  // found implausible after refinement
   const auto knownUnobservable = [&](const std::string& id) -> const EffectTest* {
     for (const auto& t : unobservable)
       if (t.id == id) return &t;
@@ -201,19 +209,27 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     const double l0 = gap.log_likelihood;
     std::vector<Candidate> candidates;
     for (const Effect& e : library) {
-      if (const EffectTest* t = knownUnobservable(e.id)) {
+      // Not evaluated again: refused earlier, unobservable on this motion, or a state of the filter.
+      const auto settled = [&](EffectTest test) {
         Candidate c;
         c.effect = &e;
-        c.test = *t;
+        c.test = std::move(test);
         candidates.push_back(c);
+      };
+      if (std::find(excluded.begin(), excluded.end(), e.id) != excluded.end()) {
+        EffectTest t = blankTest(e);
+        t.verdict = Verdict::Implausible;
+        settled(t);
+        continue;
+      }
+      if (const EffectTest* t = knownUnobservable(e.id)) {
+        settled(*t);
         continue;
       }
       if (e.estimated_by_filter(model.filter)) {
-        Candidate c;
-        c.effect = &e;
-        c.test = blankTest(e);
-        c.test.verdict = Verdict::InModel;
-        candidates.push_back(c);
+        EffectTest t = blankTest(e);
+        t.verdict = Verdict::InModel;
+        settled(t);
         continue;
       }
       candidates.push_back(e.kind == EffectKind::Deterministic ? testDeterministic(e, model, l0, eval)
@@ -222,10 +238,10 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     int tested = 0;
     for (const auto& c : candidates)
       if (c.test.verdict != Verdict::InModel && c.test.dof > 0) ++tested;
-    Candidate* best = nullptr;
+    std::vector<Candidate*> significant;
     for (auto& c : candidates) {
       EffectTest& t = c.test;
-      if (t.verdict == Verdict::InModel) continue;
+      if (t.verdict == Verdict::InModel || t.verdict == Verdict::Implausible) continue;
       if (t.dof == 0) {
         t.verdict = Verdict::Unobservable;
         if (knownUnobservable(t.id) == nullptr) unobservable.push_back(t);
@@ -235,12 +251,32 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
       const double alpha = options.family_alpha / std::max(tested, 1);
       t.threshold = chiSquareQuantile(c.effect->kind == EffectKind::ProcessNoise ? 2.0 * alpha : alpha, t.dof);
       t.verdict = t.lr > t.threshold ? Verdict::Significant : Verdict::NotSignificant;
+      if (t.verdict == Verdict::Significant && !plausible(*c.effect, t)) t.verdict = Verdict::Implausible;
       c.margin = t.lr - t.threshold;
-      if (t.verdict == Verdict::Significant && (best == nullptr || c.margin > best->margin)) best = &c;
+      if (t.verdict == Verdict::Significant) significant.push_back(&c);
+    }
+    std::sort(significant.begin(), significant.end(), [](const Candidate* a, const Candidate* b) { return a->margin > b->margin; });
+    // The most significant one whose refined estimate stays plausible. Newton steps that run out of the
+    // range where the quadratic model held, or into an unobservable direction, do not make a credible effect.
+    Candidate* best = nullptr;
+    EffectTest named;
+    for (Candidate* c : significant) {
+      if (step == options.max_steps) break;
+      named = c->test;
+      if (c->effect->kind == EffectKind::Deterministic) {
+        fillFromFit(named, refine(*c->effect, model, c->fit, eval));
+        if (named.dof < c->test.dof || !plausible(*c->effect, named)) {
+          c->test.verdict = Verdict::Implausible;
+          excluded.push_back(c->effect->id);
+          continue;
+        }
+      }
+      best = c;
+      break;
     }
     std::vector<EffectTest> tests;
     for (const auto& c : candidates) tests.push_back(c.test);
-    if (best == nullptr || step == options.max_steps) {
+    if (best == nullptr) {
       out.final_tests = tests;
       break;
     }
@@ -249,10 +285,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     s.tests = tests;
     s.gap_before = gap;
     const Effect& e = *best->effect;
-    EffectTest named = best->test;
     if (e.kind == EffectKind::Deterministic) {
-      const QuadraticFit fit = refine(e, model, best->fit, eval);
-      fillFromFit(named, fit);
       // The correlation of its estimate with each other observable 1-component effect, from one more run
       // at both steps (the mixed second difference), taken at the round's centre.
       int lead = 0;

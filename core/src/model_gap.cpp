@@ -79,6 +79,36 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
     }
   }
   for (int c = 0; c < Eskf::Innovation::kCount; ++c) addBoth(gap, kInnovationNames[c], innov[static_cast<std::size_t>(c)]);
+  // Heading innovations averaged over blocks (times sqrt(count): unit variance when white): a systematic
+  // pattern that single innovations hide in the heading noise (a latency's -rate x delay, a scale factor's
+  // growing angle error) adds up over a block.
+  {
+    Accumulator blocks;
+    ResidualSeries block_series{"heading_block", {}, {}};
+    std::size_t i = 0;
+    const auto& t = heading_series.t;
+    const auto& e = heading_series.value;
+    while (i < t.size()) {
+      std::size_t j = i;
+      double sum = 0.0;
+      bool all_still = true;
+      while (j < t.size() && t[j] < t[i] + kResidualBlock) {
+        sum += e[j];
+        all_still = all_still && stillAt(t[j]);
+        ++j;
+      }
+      const double count = static_cast<double>(j - i);
+      if (count >= 4.0) {
+        const double v = sum / std::sqrt(count);
+        blocks.of(all_still).push_back(v);
+        block_series.t.push_back(0.5 * (t[i] + t[j - 1]));
+        block_series.value.push_back(v);
+      }
+      i = j;
+    }
+    addBoth(gap, "heading_block", blocks);
+    gap.series.push_back(std::move(block_series));
+  }
 
   // Re-simulated IMU data over blocks. The motion: the filter's attitude and the corrected gyro's rate,
   // about a centre that does not move; the data through the calibrated model (bias, scale states).

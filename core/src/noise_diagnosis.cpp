@@ -12,6 +12,8 @@ namespace imucal {
 
 namespace {
 
+constexpr double kMaterial = 0.1;
+
 struct Term {
   const char* suffix;
   double NoiseTerms::*member;
@@ -105,7 +107,16 @@ void diagnoseNoise(const std::vector<ImuSample>& imu, const std::vector<bool>& s
         t.verdict = Verdict::Unobservable;
         t.reveals = "a longer still recording (the term is below the others at every cluster time here)";
       } else {
-        t.verdict = t.lr > t.threshold ? Verdict::Significant : Verdict::NotSignificant;
+        // Significant and material: the change moves the Allan variance by more than kMaterial somewhere
+        // in the measured range (adjacent cluster times share data, so a z-score alone overstates tiny terms).
+        NoiseTerms changed = fit.value;
+        changed.*term.member = current;
+        double shift = 0.0;
+        for (const auto& p : curves[static_cast<std::size_t>(axis)].data) {
+          const double a = allanModel(fit.value, p.tau), b = allanModel(changed, p.tau);
+          shift = std::max(shift, std::abs(a * a - b * b) / (a * a));
+        }
+        t.verdict = t.lr > t.threshold && shift > kMaterial ? Verdict::Significant : Verdict::NotSignificant;
       }
       if (t.verdict == Verdict::Significant) {
         after.*term.member = value;

@@ -22,7 +22,10 @@ struct DiagnoseOptions {
   double indistinguishable_correlation = 0.95;
 };
 
-enum class Verdict { Significant, NotSignificant, Unobservable, InModel };
+// Implausible: significant, but the fitted size is beyond what the effect can physically have (more than
+// kImplausible x its plausible size): the likelihood is chasing something the library lacks.
+enum class Verdict { Significant, NotSignificant, Unobservable, InModel, Implausible };
+constexpr double kImplausible = 2.0;
 const char* verdictName(Verdict v);
 
 struct EffectTest {

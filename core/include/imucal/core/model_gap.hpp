@@ -4,8 +4,9 @@
 // the model explains the data) and the measured accelerometer data against data re-simulated from the
 // reconstructed motion (the filter's attitude, the corrected gyro's rate, the centre held still, the lever
 // arm) through core's sensor model with the calibrated parameters, averaged over blocks and divided by the
-// model's white noise. There is no gyro counterpart: with heading at 100 Hz the reconstructed attitude's
-// increments are set by the heading corrections, so a gyro mismatch shows in the heading innovations.
+// model's white noise; and the heading innovations averaged over the same blocks. There is no gyro
+// counterpart: with heading at 100 Hz the reconstructed attitude's increments are set by the heading
+// corrections, so a gyro mismatch shows in the heading innovations.
 #include <string>
 #include <vector>
 
@@ -15,7 +16,7 @@
 namespace imucal {
 
 struct ChannelGap {
-  std::string channel;   // velocity_x .. position_z, heading, accel_x .. accel_z
+  std::string channel;   // velocity_x .. position_z, heading, heading_block, accel_x .. accel_z
   std::string segment;   // "still" or "turning"
   int count = 0;
   double ratio = 0.0;    // RMS of the normalized residual: 1 when the model explains the data
