@@ -24,6 +24,9 @@ const char* verdictName(Verdict v) {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// A residual this many times the model's noise is beyond any sensor effect of the library on a turn about a
+// fixed point: the recording's motion itself is not the model's.
+constexpr double kMotionAssumptionGap = 30.0;
 
 // The data and the filter runs of one diagnosis.
 class Evaluator {
@@ -197,6 +200,11 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   }
   ModelGap gap = eval.gap(model);
   out.initial_gap = gap;
+  if (gap.worst() > kMotionAssumptionGap) {
+    out.notes.push_back("the starting gap is " + std::to_string(static_cast<int>(gap.worst())) +
+                        " x the model's noise: the motion breaks the pseudo-observations (the device translates?), "
+                        "and effects named below may only absorb that; record a turn about a fixed point");
+  }
   // What the motion cannot see does not change with the effects added: tested once.
   std::vector<EffectTest> unobservable;
   std::vector<std::string> excluded;  // found implausible after refinement

@@ -98,7 +98,7 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
         ++j;
       }
       const double count = static_cast<double>(j - i);
-      if (count >= 4.0) {
+      if (count >= 2.0) {
         const double v = sum / std::sqrt(count);
         blocks.of(all_still).push_back(v);
         block_series.t.push_back(0.5 * (t[i] + t[j - 1]));

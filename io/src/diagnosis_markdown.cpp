@@ -58,9 +58,10 @@ std::vector<NamedPlot> diagnosisPlots(const Diagnosis& d) {
   std::vector<NamedPlot> plots;
   const char* colors[] = {"#1f77b4", "#d62728", "#2ca02c"};
   if (d.has_motion) {
-    for (const char* ch : {"accel_x", "accel_y", "heading"}) {
+    for (const char* ch : {"accel_x", "accel_y", "heading_block"}) {
       PlotSpec p;
-      p.title = std::string(ch) + (std::string(ch) == "heading" ? " innovation" : " residual (measured - re-simulated, 0.5 s blocks)") +
+      p.title = std::string(ch) +
+                (std::string(ch) == "heading_block" ? " innovations (0.5 s means)" : " residual (measured - re-simulated, 0.5 s means)") +
                 ", before and after";
       p.x_label = "t (s)";
       p.y_label = "units of the model's sigma";
@@ -126,10 +127,13 @@ std::string diagnosisMarkdown(const Diagnosis& d, const std::vector<NamedPlot>& 
     md << '\n';
     md << "## Last round of candidates\n\n| effect | verdict | value +- 1-sigma | LR (threshold) | revealed by |\n|---|---|---|---:|---|\n";
     for (const auto& t : d.final_tests) {
-      md << "| `" << t.id << "` | " << verdictName(t.verdict) << " | "
-         << (t.verdict == Verdict::Unobservable || t.verdict == Verdict::InModel ? "-" : valueText(t)) << " | "
+      const bool valued = t.verdict != Verdict::Unobservable && t.verdict != Verdict::InModel && t.value.size() > 0;
+      md << "| `" << t.id << "` | " << verdictName(t.verdict) << " | " << (valued ? valueText(t) : "-") << " | "
          << (t.dof > 0 ? fmt(t.lr, 3) + " (" + fmt(t.threshold, 3) + ")" : "-") << " | "
-         << (t.verdict == Verdict::Unobservable ? t.reveals : "") << " |\n";
+         << (t.verdict == Verdict::Unobservable ? t.reveals
+                                                 : t.verdict == Verdict::Implausible ? "refused: the fit is beyond twice the size the effect can have"
+                                                                                     : "")
+         << " |\n";
     }
     md << '\n';
   }
