@@ -9,12 +9,10 @@
 #include <sstream>
 
 #include "commands.hpp"
-#include "lcm_log_input.hpp"
+#include "recording_input.hpp"
 #include "imucal/core/calibrator.hpp"
-#include "imucal/core/magnetometer_heading.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
-#include "imucal/io/csv_reader.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/io/param_units.hpp"
@@ -24,16 +22,11 @@ namespace imucal::cli {
 namespace {
 
 struct CalibrateArgs {
-  std::string lcm_log;
-  std::string sensor_id = "imu0";
-  std::string imu;
-  std::string heading;
-  std::string mag;
+  RecordingArgs input;
   std::string config;
   std::string out;
   std::string history;
   std::string truth;
-  bool no_heading = false;
 };
 
 std::string defaultHistoryPath(const std::string& out) {
@@ -87,37 +80,11 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
 void runCalibrateCommand(const CalibrateArgs& args) {
   io::CalibrateConfig config;
   if (!args.config.empty()) config = io::loadCalibrateConfig(args.config);
-  if (args.imu.empty() == args.lcm_log.empty()) throw std::invalid_argument("give either --imu or --lcm-log");
-  std::vector<ImuSample> imu;
-  std::vector<HeadingSample> heading;
-  if (!args.lcm_log.empty()) {
-    LcmLogInput log = readLcmLog(args.lcm_log, "IMUCAL_IMU", "IMUCAL_HEADING", args.sensor_id);
-    std::cout << args.lcm_log << ": " << log.imu.size() << " IMU and " << log.heading.size() << " heading samples of "
-              << args.sensor_id << " (" << log.events << " events)\n";
-    imu = std::move(log.imu);
-    heading = std::move(log.heading);
-  } else {
-    imu = io::readImuCsv(args.imu, config.imu);
-  }
-  if (!args.heading.empty() && !args.mag.empty()) {
-    throw std::invalid_argument("give either --heading or --mag, not both");
-  }
-  if (!args.heading.empty()) heading = io::readHeadingCsv(args.heading, config.heading);
-  if (!args.mag.empty()) {
-    const MagHeading mh = headingFromMagnetometer(io::readMagCsv(args.mag, config.mag), imu, config.mag_heading);
-    heading = mh.heading;
-    config.filter.measurements.heading_sigma = mh.sigma;
-    std::cout << "magnetometer: hard iron (" << mh.fit.correction.offset.x() << ", " << mh.fit.correction.offset.y()
-              << ") uT, horizontal field " << mh.fit.radius << " uT, fit residual " << mh.fit.residual_rms
-              << " uT, arc " << mh.fit.arc / units::deg << " deg -> heading sigma " << mh.sigma / units::deg << " deg\n";
-  }
-  if (args.no_heading) heading.clear();
-  config.filter.measurements.heading = config.filter.measurements.heading && !heading.empty();
-
-  const CalibrationResult result = calibrate(imu, heading, config.filter);
+  const Recording recording = loadRecording(args.input, config);
+  const CalibrationResult result = calibrate(recording.imu, recording.heading, config.filter);
   nlohmann::json json = io::resultToJson(result);
-  json["inputs"] = {{"imu", args.imu},   {"lcm_log", args.lcm_log}, {"heading", args.heading},
-                    {"mag", args.mag},   {"config", args.config}};
+  json["inputs"] = {{"imu", args.input.imu}, {"lcm_log", args.input.lcm_log}, {"heading", args.input.heading},
+                    {"mag", args.input.mag}, {"config", args.config}};
   json["effective_config_yaml"] = io::calibrateConfigToYaml(config);
   io::writeJsonFile(args.out, json);
   const std::string history = args.history.empty() ? defaultHistoryPath(args.out) : args.history;
@@ -134,16 +101,11 @@ void runCalibrateCommand(const CalibrateArgs& args) {
 void addCalibrateCommand(CLI::App& app) {
   auto args = std::make_shared<CalibrateArgs>();
   CLI::App* cmd = app.add_subcommand("calibrate", "Estimate IMU biases (and more) from a recording");
-  cmd->add_option("--imu", args->imu, "IMU CSV")->check(CLI::ExistingFile);
-  cmd->add_option("--lcm-log", args->lcm_log, "LCM log (lcm-logger) with IMUCAL_IMU / IMUCAL_HEADING messages")->check(CLI::ExistingFile);
-  cmd->add_option("--sensor-id", args->sensor_id, "Sensor to take from the LCM log")->capture_default_str();
-  cmd->add_option("--heading", args->heading, "Heading CSV (rad clockwise from north unless the config says)")->check(CLI::ExistingFile);
-  cmd->add_option("--mag", args->mag, "Magnetometer CSV, turned into heading")->check(CLI::ExistingFile);
+  addRecordingOptions(*cmd, args->input);
   cmd->add_option("--config", args->config, "Calibration config (YAML): columns, units, axes, noise, model")->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "Result JSON")->required();
   cmd->add_option("--history", args->history, "Per-epoch history CSV (default: <out>.history.csv)");
   cmd->add_option("--truth", args->truth, "truth.json from `imucal simulate`: print the error of each estimate")->check(CLI::ExistingFile);
-  cmd->add_flag("--no-heading", args->no_heading, "Ignore heading input (gyro z bias then stays unconverged)");
   cmd->callback([args]() { runCalibrateCommand(*args); });
 }
 

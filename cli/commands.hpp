@@ -8,5 +8,6 @@ void addSimulateCommand(CLI::App& app);
 void addCalibrateCommand(CLI::App& app);
 void addMonteCarloCommand(CLI::App& app);
 void addBoundCommand(CLI::App& app);
+void addDiagnoseCommand(CLI::App& app);
 
 }  // namespace imucal::cli

@@ -7,6 +7,8 @@
 
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/eskf.hpp"
+#include "imucal/core/heading_model.hpp"
+#include "imucal/core/lever_arm.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/static_detector.hpp"
@@ -43,24 +45,32 @@ struct PassOutput {
   StateMat P;
   std::vector<EpochRecord> history;
   MeasurementStats stats;
+  double log_likelihood = 0.0;
+  std::vector<Eskf::Innovation> innovations;
 };
 
 PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
-                   const std::vector<bool>& still, const FilterConfig& config, const VecX& params0, bool feedback) {
+                   const std::vector<bool>& still, const FilterConfig& config, const VecX& params0, bool feedback,
+                   bool keep_innovations) {
   const auto& m = config.measurements;
   Eskf filter(config);
   const StateLayout& layout = filter.layout();
   const bool use_heading = m.heading && !heading.empty();
   const InitialAlignment init = alignInitialState(imu, use_heading ? heading : std::vector<HeadingSample>{},
                                                   config, params0, layout);
-  filter.initialize(imu.front(), init.nav, params0, init.P0);
+  NavState nav0 = init.nav;
+  // The IMU sits at the lever arm from the centre, which the position pseudo-observation holds at zero.
+  nav0.p = leverArmPosition(nav0.q_nb.toRotationMatrix(), m.lever_arm);
+  filter.initialize(imu.front(), nav0, params0, init.P0);
   filter.setFeedback(feedback);
 
   PassOutput out;
+  if (keep_innovations) filter.setInnovationSink(&out.innovations);
   out.history.reserve(imu.size());
   std::size_t h = init.first_unused_heading;
   double heading_nis_sum = 0.0, velocity_nis_sum = 0.0;
-  const auto headingTime = [&](std::size_t i) { return heading[i].t - m.heading_latency; };
+  const HeadingErrors heading_errors{m.heading_bias, m.heading_latency};
+  const auto headingTime = [&](std::size_t i) { return heading_errors.describedTime(heading[i].t); };
   const auto applyHeading = [&](std::size_t i) {
     const auto r = filter.updateHeading(heading[i].heading, m.heading_sigma, m.heading_gate_sigma);
     if (r.accepted) {
@@ -114,14 +124,18 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   }
   out.params = filter.estimatedParams();
   out.P = filter.covariance();
+  out.log_likelihood = filter.logLikelihood();
   return out;
 }
 
 }  // namespace
 
-CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
-                            const FilterConfig& config) {
-  validate(imu, heading);
+CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& raw_heading,
+                            const FilterConfig& config, const CalibrateOptions& options) {
+  validate(imu, raw_heading);
+  std::vector<HeadingSample> heading = raw_heading;
+  const HeadingErrors heading_errors{config.measurements.heading_bias, config.measurements.heading_latency};
+  for (auto& h : heading) h.heading = heading_errors.correct(h.heading);
   if (config.passes < 1) throw std::invalid_argument("calibrate: passes must be at least 1");
   const StateLayout layout = StateLayout::make(config.model);
   const std::vector<bool> still = detectStill(imu);
@@ -137,7 +151,7 @@ CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector
     // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
     // about the dead-reckoned trajectory of the previous pass's parameters.
     const bool feedback = i == 0 || !config.open_loop_refinement;
-    pass = runPass(imu, heading, still, config, params, feedback);
+    pass = runPass(imu, heading, still, config, params, feedback, options.keep_innovations);
     const VecX sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
     const double change = ((pass.params - params).cwiseQuotient(sigma)).cwiseAbs().maxCoeff();
     params = pass.params;
@@ -150,6 +164,8 @@ CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector
   result.sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
   result.stats = pass.stats;
   result.history = std::move(pass.history);
+  result.log_likelihood = pass.log_likelihood;
+  result.innovations = std::move(pass.innovations);
   result.duration = imu.back().t - imu.front().t;
 
   const int n = layout.paramCount();

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "imucal/core/lever_arm.hpp"
 #include "imucal/core/rotation.hpp"
 
 namespace imucal {
@@ -24,6 +25,12 @@ void Eskf::initialize(const ImuSample& first_raw, const NavState& nav, const Vec
   params_ = params;
   P_ = P0;
   dx_.setZero(layout_.size);
+  log_likelihood_ = 0.0;
+}
+
+void Eskf::record(int channel, double y, double s) {
+  log_likelihood_ -= 0.5 * (std::log(2.0 * 3.14159265358979323846 * s) + y * y / s);
+  if (sink_ != nullptr) sink_->push_back({last_raw_.t, channel, y, s});
 }
 
 ImuSample Eskf::corrected(const ImuSample& raw) const {
@@ -76,17 +83,66 @@ void Eskf::scalarSelector(int index, double innovation, double variance, double&
   josephSelectorUpdate(P_, index, variance, gain_, s);
   dx_ += gain_ * y;
   nis += y * y / s;
+  record(channel_, y, s);
+}
+
+void Eskf::scalarRow(const StateVec& h, double innovation, double variance, double& nis) {
+  double s = 0.0;
+  const double y = innovation - h.dot(dx_);
+  josephScalarUpdate(P_, h, variance, gain_, s);
+  dx_ += gain_ * y;
+  nis += y * y / s;
+  record(channel_, y, s);
+}
+
+double Eskf::updateCentre(int channel0, const Vec3& predicted, const Mat3& att_jacobian, const Mat3* gyro_bias_jacobian,
+                          double sigma) {
+  using L = StateLayout;
+  const bool velocity = channel0 == Innovation::VelocityX;
+  double nis = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    h_.setZero(layout_.size);
+    h_((velocity ? L::kVel : L::kPos) + i) = 1.0;
+    h_.segment<3>(L::kAtt) = att_jacobian.row(i).transpose();
+    if (gyro_bias_jacobian != nullptr) h_.segment<3>(L::kGyroBias) = gyro_bias_jacobian->row(i).transpose();
+    channel_ = channel0 + i;
+    scalarRow(h_, -predicted(i), sigma * sigma, nis);
+  }
+  return nis;
 }
 
 double Eskf::updateZeroVelocity(double sigma) {
+  const Vec3& r = config_.measurements.lever_arm;
+  if (!r.isZero()) {
+    // Centre velocity v - C (w x r); to first order in the errors it is
+    // v + dv - C (w x r) + [C (w x r) x] phi - C [r x] dbg (the gyro bias error enters through w).
+    const Mat3 c = nav_.q_nb.toRotationMatrix();
+    const Vec3 w = corrected(last_raw_).gyro - c.transpose() * config_.earth.earthRateNed();
+    const Vec3 u = leverArmVelocity(c, w, r);
+    const Mat3 bias_jacobian = -c * skew(r);
+    return updateCentre(Innovation::VelocityX, nav_.v - u, skew(u), &bias_jacobian, sigma);
+  }
   double nis = 0.0;
-  for (int i = 0; i < 3; ++i) scalarSelector(StateLayout::kVel + i, -nav_.v(i), sigma * sigma, nis);
+  for (int i = 0; i < 3; ++i) {
+    channel_ = Innovation::VelocityX + i;
+    scalarSelector(StateLayout::kVel + i, -nav_.v(i), sigma * sigma, nis);
+  }
   return nis;
 }
 
 double Eskf::updateConstantPosition(const Vec3& p_ref, double sigma) {
+  const Vec3& r = config_.measurements.lever_arm;
+  if (!r.isZero()) {
+    // Centre position p - C r = p + dp - C r + [C r x] phi.
+    const Mat3 c = nav_.q_nb.toRotationMatrix();
+    const Vec3 u = leverArmPosition(c, r);
+    return updateCentre(Innovation::PositionX, nav_.p - u - p_ref, skew(u), nullptr, sigma);
+  }
   double nis = 0.0;
-  for (int i = 0; i < 3; ++i) scalarSelector(StateLayout::kPos + i, p_ref(i) - nav_.p(i), sigma * sigma, nis);
+  for (int i = 0; i < 3; ++i) {
+    channel_ = Innovation::PositionX + i;
+    scalarSelector(StateLayout::kPos + i, p_ref(i) - nav_.p(i), sigma * sigma, nis);
+  }
   return nis;
 }
 
@@ -104,6 +160,7 @@ Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double ga
   josephScalarUpdate(P_, h_, r, gain_, s);
   dx_ += gain_ * y;
   out.accepted = true;
+  record(Innovation::Heading, y, s_pred);
   return out;
 }
 

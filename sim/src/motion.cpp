@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "imucal/core/lever_arm.hpp"
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/units.hpp"
 
@@ -168,9 +169,9 @@ TruthState Motion::at(double t) const {
   s.alpha_b = alpha;
   const Mat3 c = s.q_nb.toRotationMatrix();
   const Vec3& r_b = config_.lever_arm;
-  const Vec3 acc_b = alpha.cross(r_b) + omega.cross(omega.cross(r_b));
-  s.p_n = c * r_b;
-  s.v_n = c * omega.cross(r_b);
+  const Vec3 acc_b = leverArmAcceleration(omega, alpha, r_b);
+  s.p_n = leverArmPosition(c, r_b);
+  s.v_n = leverArmVelocity(c, omega, r_b);
   s.a_n = c * acc_b;
   s.f_b = acc_b - c.transpose() * earth_.gravityNed();
   s.omega_ib_b = omega + c.transpose() * earth_.earthRateNed();

@@ -5,6 +5,7 @@
 #include <random>
 #include <stdexcept>
 
+#include "imucal/core/heading_model.hpp"
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/units.hpp"
 
@@ -106,8 +107,9 @@ std::vector<HeadingSample> simulateHeading(const HeadingSimConfig& cfg, const Mo
   Gauss gauss(seed);
   for (std::size_t k = 0; k < n; ++k) {
     const double t = std::min(static_cast<double>(k) / cfg.rate_hz, motion.duration());
-    const double yaw = yawOf(motion.at(t - cfg.latency).q_nb);
-    out.push_back({t, wrapAngle(yaw + cfg.bias + cfg.noise * gauss())});
+    const HeadingErrors errors{cfg.bias, cfg.latency};
+    const double yaw = yawOf(motion.at(errors.describedTime(t)).q_nb);
+    out.push_back({t, errors.measure(yaw + cfg.noise * gauss())});
   }
   return out;
 }
@@ -133,8 +135,6 @@ SimOutput simulate(const SimConfig& config, std::uint64_t seed) {
   BiasProcess gyro_bias(imu.gyro_noise, imu.errors.gyro.bias, subSeed(seed, Stream::GyroBias));
   // White noise is specified as a density; a sample averages it over the nominal period.
   const double inv_sqrt_dt = std::sqrt(imu.rate_hz);
-  const Mat3 gain_a = imu.errors.accel.gainMatrix();
-  const Mat3 gain_g = imu.errors.gyro.gainMatrix();
 
   for (std::size_t k = 0; k < times.size(); ++k) {
     if (k > 0) {
@@ -145,9 +145,13 @@ SimOutput simulate(const SimConfig& config, std::uint64_t seed) {
     const TruthState truth = motion.at(times[k]);
     const Vec3 ba = accel_bias.value();
     const Vec3 bg = gyro_bias.value();
+    // core's error model with this epoch's (drifting) biases: the filter removes the same terms.
+    ImuErrorModel errors = imu.errors;
+    errors.accel.bias = ba;
+    errors.gyro.bias = bg;
     const Vec3 accel =
-        gain_a * truth.f_b + ba + inv_sqrt_dt * imu.accel_noise.white.cwiseProduct(accel_white.vec3());
-    const Vec3 gyro = gain_g * truth.omega_ib_b + imu.errors.gyro_g_sensitivity * truth.f_b + bg +
+        errors.measureAccel(truth.f_b) + inv_sqrt_dt * imu.accel_noise.white.cwiseProduct(accel_white.vec3());
+    const Vec3 gyro = errors.measureGyro(truth.omega_ib_b, truth.f_b) +
                       inv_sqrt_dt * imu.gyro_noise.white.cwiseProduct(gyro_white.vec3());
     out.imu.push_back({times[k], digitize(accel, imu.accel_noise), digitize(gyro, imu.gyro_noise)});
     out.truth.push_back(truth);

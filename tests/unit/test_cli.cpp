@@ -8,28 +8,16 @@
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
+
+#include "cli_run.hpp"
 #include <string>
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandRun {
-  int status = 0;
-  std::string output;
-};
-
-CommandRun run(const std::string& args) {
-  const std::string cmd = std::string(IMUCAL_CLI_PATH) + " " + args + " 2>&1";
-  CommandRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using imucal::testing::CommandRun;
+CommandRun run(const std::string& args) { return imucal::testing::runImucal(args); }
 
 class CliTest : public ::testing::Test {
  protected:

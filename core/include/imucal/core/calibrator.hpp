@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "imucal/core/eskf.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/state_layout.hpp"
 #include "imucal/core/types.hpp"
@@ -43,11 +44,18 @@ struct CalibrationResult {
   MeasurementStats stats;
   int passes_run = 0;
   double duration = 0.0;
+  // Of the final pass: the innovations' log-likelihood and, when asked for, the innovations themselves.
+  double log_likelihood = 0.0;
+  std::vector<Eskf::Innovation> innovations;
+};
+
+struct CalibrateOptions {
+  bool keep_innovations = false;
 };
 
 // Throws std::invalid_argument with a clear message on unusable input (too few samples, not finite,
 // time not increasing); sample-level checks with file and line happen in io/ before this.
 CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
-                            const FilterConfig& config);
+                            const FilterConfig& config, const CalibrateOptions& options = {});
 
 }  // namespace imucal

@@ -1,6 +1,8 @@
 #pragma once
 // Error-state Kalman filter on the loosely coupled INS model, with pseudo-observations in place of GNSS.
 // Measurements accumulate into the error state; correct() feeds it back into the nominal state and resets.
+#include <vector>
+
 #include "imucal/core/error_dynamics.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/mechanization.hpp"
@@ -43,6 +45,20 @@ class Eskf {
   VecX estimatedParams() const;
   NavState estimatedNav() const;
 
+  // Gaussian log-likelihood of every innovation since initialize(): sum of -(log(2 pi s) + y^2 / s) / 2.
+  // Maximizing it over a model parameter is maximum likelihood for that parameter (prediction-error
+  // decomposition), with the filter's states integrated out.
+  double logLikelihood() const { return log_likelihood_; }
+  // Each scalar innovation (y, its variance s) is also appended here when set; channel as in Innovation.
+  struct Innovation {
+    enum Channel { VelocityX, VelocityY, VelocityZ, PositionX, PositionY, PositionZ, Heading, kCount };
+    double t = 0.0;
+    int channel = 0;
+    double y = 0.0;
+    double s = 0.0;
+  };
+  void setInnovationSink(std::vector<Innovation>* sink) { sink_ = sink; }
+
   double time() const { return last_raw_.t; }
   const NavState& nav() const { return nav_; }
   const VecX& params() const { return params_; }
@@ -53,6 +69,11 @@ class Eskf {
 
  private:
   void scalarSelector(int index, double innovation, double variance, double& nis);
+  void scalarRow(const StateVec& h, double innovation, double variance, double& nis);
+  void record(int channel, double y, double s);
+  // Rows of the centre's position / velocity pseudo-observation for a lever arm (see lever_arm.hpp).
+  double updateCentre(int channel0, const Vec3& predicted, const Mat3& att_jacobian, const Mat3* gyro_bias_jacobian,
+                      double sigma);
 
   FilterConfig config_;
   StateLayout layout_;
@@ -65,6 +86,9 @@ class Eskf {
   StateVec h_;
   ImuSample last_raw_;
   bool feedback_ = true;
+  double log_likelihood_ = 0.0;
+  std::vector<Innovation>* sink_ = nullptr;
+  int channel_ = 0;  // channel of the selector update in progress
 };
 
 }  // namespace imucal

@@ -32,6 +32,10 @@ struct MeasurementConfig {
   bool heading = true;
   double heading_sigma = 5.0 * 3.14159265358979323846 / 180.0;  // rad
   double heading_latency = 0.0;        // s, subtracted from heading time stamps
+  double heading_bias = 0.0;           // rad, subtracted from heading values (see heading_model.hpp)
+  // IMU position relative to the centre the device is turned about (body frame, m): the zero-velocity and
+  // constant-position pseudo-observations are then of the centre, not of the IMU (see lever_arm.hpp).
+  Vec3 lever_arm = Vec3::Zero();
   // Heading innovations beyond this many sigma are rejected (a magnetometer near iron).
   double heading_gate_sigma = 0.0;     // 0 = no gate
 };

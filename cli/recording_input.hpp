@@ -1,0 +1,37 @@
+#pragma once
+// The recording a command works on: IMU from CSV or an LCM log, heading from a CSV, a magnetometer or the
+// log. Shared by `calibrate` and `diagnose` so both read input the same way.
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "imucal/core/types.hpp"
+#include "imucal/io/config.hpp"
+
+namespace imucal::cli {
+
+struct RecordingArgs {
+  std::string lcm_log;
+  std::string sensor_id = "imu0";
+  std::string imu;
+  std::string heading;
+  std::string mag;
+  bool no_heading = false;
+};
+
+// --imu, --lcm-log, --sensor-id, --heading, --mag, --no-heading.
+void addRecordingOptions(CLI::App& cmd, RecordingArgs& args);
+
+struct Recording {
+  std::vector<ImuSample> imu;
+  std::vector<HeadingSample> heading;
+};
+
+// Reads the recording; a magnetometer sets config.filter's heading sigma from its fit, and heading is
+// switched off in config.filter when there is none. Prints what it read.
+Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config);
+
+// "imu.csv + heading.csv" or "log.lcm": for reports.
+std::string describeRecording(const RecordingArgs& args);
+
+}  // namespace imucal::cli

@@ -1,0 +1,42 @@
+#pragma once
+// Overlapping Allan deviation of a uniformly sampled rate (gyro, rad/s) or specific force (m/s^2), and the
+// standard noise model fitted to it: the same terms the simulator generates (sim/sensor_sim.hpp) and the
+// filter's process noise uses (white density, bias random walk), plus quantization and bias instability.
+#include <vector>
+
+namespace imucal {
+
+struct AllanPoint {
+  double tau = 0.0;    // s
+  double adev = 0.0;   // SI of the input
+  double dof = 0.0;    // equivalent degrees of freedom of the variance estimate
+};
+
+// Octave-spaced cluster times from one sample up to a tenth of the record (so each point averages over at
+// least ~10 independent clusters). dt: the sample period, s.
+std::vector<AllanPoint> allanDeviation(const std::vector<double>& x, double dt);
+
+struct NoiseTerms {
+  double quantization = 0.0;      // Q: AVAR 3 Q^2 / tau^2 (Q in SI * s)
+  double white = 0.0;             // N: AVAR N^2 / tau (density, SI * sqrt(s))
+  double bias_instability = 0.0;  // B: AVAR (2 ln 2 / pi) B^2 (flicker floor, SI)
+  double random_walk = 0.0;       // K: AVAR K^2 tau / 3 (SI / sqrt(s))
+};
+
+double allanModel(const NoiseTerms& n, double tau);  // ADEV of the model at tau
+
+struct NoiseFit {
+  NoiseTerms value;
+  NoiseTerms sigma;  // 1-sigma of each coefficient (0 where clamped at zero)
+  // Fit quality: sum over points of dof * (log(avar_data / avar_model))^2 / 2 (~ number of points when the
+  // model fits).
+  double misfit = 0.0;
+};
+
+// Weighted least squares on the Allan variance (each point weighted by its dof), coefficients held >= 0.
+NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points);
+
+// Misfit (as above) of given terms against measured points.
+double noiseMisfit(const std::vector<AllanPoint>& points, const NoiseTerms& model);
+
+}  // namespace imucal

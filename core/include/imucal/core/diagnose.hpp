@@ -1,0 +1,75 @@
+#pragma once
+// `imucal diagnose`: where the calibrated model and the measured data disagree, which missing effect
+// explains it (value and 1-sigma), and how much of the gap adding it closes, repeated until nothing
+// significant is left. Effects are parameters of SensorHypothesis fitted by the filter's own innovation
+// likelihood (deterministic terms, process noise) or by the Allan deviation of long still data (noise).
+#include <string>
+#include <vector>
+
+#include "imucal/core/allan.hpp"
+#include "imucal/core/effect_library.hpp"
+#include "imucal/core/model_gap.hpp"
+
+namespace imucal {
+
+struct DiagnoseOptions {
+  // Chance of naming anything in a round on data the model explains (split over the candidates tested).
+  double family_alpha = 0.01;
+  int max_steps = 4;
+  // Still stretches at least this long are used for the Allan deviation of the noise terms.
+  double allan_min_still = 60.0;  // s
+  // Correlation above which two effects are reported as indistinguishable on this motion.
+  double indistinguishable_correlation = 0.95;
+};
+
+// Implausible: significant, but the fitted size is beyond what the effect can physically have (more than
+// kImplausible x its plausible size): the likelihood is chasing something the library lacks.
+enum class Verdict { Significant, NotSignificant, Unobservable, InModel, Implausible };
+constexpr double kImplausible = 2.0;
+const char* verdictName(Verdict v);
+
+struct EffectTest {
+  std::string id;
+  std::vector<std::string> components;
+  Verdict verdict = Verdict::NotSignificant;
+  VecX value;                    // the model's value with the fitted change applied, SI
+  VecX sigma;                    // 1-sigma, SI; NaN for unobservable components
+  std::vector<bool> observable;  // per component
+  double lr = 0.0;               // likelihood-ratio statistic of adding it
+  double threshold = 0.0;        // the LR it must exceed
+  int dof = 0;
+  std::string reveals;           // for unobservable ones: the motion that would reveal it
+};
+
+struct AllanCurve {
+  std::string channel;           // gyro_x .. accel_z
+  std::vector<AllanPoint> data;
+  NoiseFit fit;                  // fitted to the data
+  NoiseTerms model_before, model_after;
+};
+
+struct DiagnoseStep {
+  EffectTest effect;             // the one named
+  std::vector<EffectTest> tests; // every candidate of the round
+  std::vector<std::pair<std::string, double>> correlated;  // other effects and their correlation with it
+  ModelGap gap_before, gap_after;
+  double allan_misfit_before = 0.0, allan_misfit_after = 0.0;  // noise steps: sqrt(misfit / points)
+};
+
+struct Diagnosis {
+  bool has_motion = false;
+  double duration = 0.0;
+  std::vector<DiagnoseStep> steps;
+  std::vector<EffectTest> final_tests;  // the last likelihood round, in which nothing was significant
+  std::vector<EffectTest> noise_tests;  // Allan-deviation tests of the noise terms
+  ModelGap initial_gap, final_gap;
+  std::vector<AllanCurve> allan;        // empty without a long still stretch
+  SensorHypothesis final_model;
+  std::vector<std::string> notes;
+  int calibrations = 0;                 // filter runs spent
+};
+
+Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                   const SensorHypothesis& start, const DiagnoseOptions& options = {});
+
+}  // namespace imucal

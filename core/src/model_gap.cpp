@@ -1,0 +1,176 @@
+#include "imucal/core/model_gap.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "imucal/core/lever_arm.hpp"
+#include "imucal/core/rotation.hpp"
+
+namespace imucal {
+
+namespace {
+
+const char* const kInnovationNames[] = {"velocity_x", "velocity_y", "velocity_z", "position_x",
+                                        "position_y", "position_z", "heading"};
+
+struct Accumulator {
+  std::vector<double> still, turning;
+  std::vector<double>& of(bool is_still) { return is_still ? still : turning; }
+};
+
+ChannelGap summarize(const std::string& channel, const std::string& segment, const std::vector<double>& e) {
+  ChannelGap g;
+  g.channel = channel;
+  g.segment = segment;
+  g.count = static_cast<int>(e.size());
+  if (e.empty()) return g;
+  double ss = 0.0, lag = 0.0;
+  for (std::size_t i = 0; i < e.size(); ++i) {
+    ss += e[i] * e[i];
+    if (i > 0) lag += e[i] * e[i - 1];
+  }
+  g.ratio = std::sqrt(ss / static_cast<double>(e.size()));
+  g.lag1 = ss > 0.0 ? lag / ss : 0.0;
+  return g;
+}
+
+void addBoth(ModelGap& gap, const std::string& channel, const Accumulator& acc) {
+  if (!acc.still.empty()) gap.channels.push_back(summarize(channel, "still", acc.still));
+  if (!acc.turning.empty()) gap.channels.push_back(summarize(channel, "turning", acc.turning));
+}
+
+}  // namespace
+
+double ModelGap::worst() const {
+  double w = 0.0;
+  for (const auto& c : channels) w = std::max(w, c.ratio);
+  return w;
+}
+
+const ChannelGap* ModelGap::find(const std::string& channel, const std::string& segment) const {
+  for (const auto& c : channels)
+    if (c.channel == channel && c.segment == segment) return &c;
+  return nullptr;
+}
+
+ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& result, const SensorHypothesis& model) {
+  ModelGap gap;
+  gap.log_likelihood = result.log_likelihood;
+  const auto& history = result.history;
+  const std::size_t n = std::min(imu.size(), history.size());
+  if (n < 2) return gap;
+
+  // Innovations, by the segment of the epoch they belong to.
+  std::vector<double> times(n);
+  for (std::size_t k = 0; k < n; ++k) times[k] = history[k].t;
+  const auto stillAt = [&](double t) {
+    const auto it = std::upper_bound(times.begin(), times.end(), t);
+    const std::size_t k = it == times.begin() ? 0 : static_cast<std::size_t>(it - times.begin()) - 1;
+    return static_cast<bool>(history[std::min(k, n - 1)].still);
+  };
+  std::vector<Accumulator> innov(Eskf::Innovation::kCount);
+  ResidualSeries heading_series{"heading", {}, {}};
+  for (const auto& r : result.innovations) {
+    const double e = r.y / std::sqrt(r.s);
+    innov[static_cast<std::size_t>(r.channel)].of(stillAt(r.t)).push_back(e);
+    if (r.channel == Eskf::Innovation::Heading) {
+      heading_series.t.push_back(r.t);
+      heading_series.value.push_back(e);
+    }
+  }
+  for (int c = 0; c < Eskf::Innovation::kCount; ++c) addBoth(gap, kInnovationNames[c], innov[static_cast<std::size_t>(c)]);
+  // Heading innovations averaged over blocks (times sqrt(count): unit variance when white): a systematic
+  // pattern that single innovations hide in the heading noise (a latency's -rate x delay, a scale factor's
+  // growing angle error) adds up over a block.
+  {
+    Accumulator blocks;
+    ResidualSeries block_series{"heading_block", {}, {}};
+    std::size_t i = 0;
+    const auto& t = heading_series.t;
+    const auto& e = heading_series.value;
+    while (i < t.size()) {
+      std::size_t j = i;
+      double sum = 0.0;
+      bool all_still = true;
+      while (j < t.size() && t[j] < t[i] + kResidualBlock) {
+        sum += e[j];
+        all_still = all_still && stillAt(t[j]);
+        ++j;
+      }
+      const double count = static_cast<double>(j - i);
+      if (count >= 2.0) {
+        const double v = sum / std::sqrt(count);
+        blocks.of(all_still).push_back(v);
+        block_series.t.push_back(0.5 * (t[i] + t[j - 1]));
+        block_series.value.push_back(v);
+      }
+      i = j;
+    }
+    addBoth(gap, "heading_block", blocks);
+    gap.series.push_back(std::move(block_series));
+  }
+
+  // Re-simulated IMU data over blocks. The motion: the filter's attitude and the corrected gyro's rate,
+  // about a centre that does not move; the data through the calibrated model (bias, scale states).
+  const StateLayout& layout = result.layout;
+  constexpr int p0 = StateLayout::kParamStart;
+  // Each epoch's attitude goes with that epoch's parameter estimates (the filter's own pairing; the final
+  // estimates with early attitudes would mix tilt and horizontal bias from different times).
+  const auto errorsAt = [&](std::size_t k, TriadErrors& accel, TriadErrors& gyro) {
+    const VecX& x = history[k].params;
+    accel.bias = x.segment<3>(StateLayout::kAccelBias - p0);
+    gyro.bias = x.segment<3>(StateLayout::kGyroBias - p0);
+    if (layout.accel_scale >= 0) accel.scale = x.segment<3>(layout.accel_scale - p0);
+    if (layout.gyro_scale >= 0) gyro.scale = x.segment<3>(layout.gyro_scale - p0);
+  };
+  const Vec3 r = model.filter.measurements.lever_arm;
+  const Vec3 g_n = model.filter.earth.gravityNed();
+  const Vec3 w_ie = model.filter.earth.earthRateNed();
+  const double accel_white = std::max(model.filter.noise.accel_white, 1e-12);
+
+  Accumulator accel_acc[3];
+  ResidualSeries accel_series[3] = {{"accel_x", {}, {}}, {"accel_y", {}, {}}, {"accel_z", {}, {}}};
+  const auto quatAt = [&](std::size_t k) {
+    const Vec3& e = history[k].euler;
+    return eulerToQuat(e.x(), e.y(), e.z());
+  };
+  std::size_t start = 0;
+  while (start + 1 < n) {
+    std::size_t end = start + 1;
+    while (end + 1 < n && imu[end].t - imu[start].t < kResidualBlock) ++end;
+    const double span = imu[end].t - imu[start].t;
+    if (span < 0.5 * kResidualBlock) break;
+    // Mean measured and re-simulated specific force over the block's intervals.
+    Vec3 measured = Vec3::Zero(), simulated = Vec3::Zero();
+    bool all_still = true;
+    for (std::size_t k = start; k < end; ++k) {
+      TriadErrors accel, gyro;
+      errorsAt(k, accel, gyro);
+      const double dt = imu[k + 1].t - imu[k].t;
+      const Vec3 w_a = gyro.remove(imu[k].gyro), w_b = gyro.remove(imu[k + 1].gyro);
+      const Vec3 w = 0.5 * (w_a + w_b);
+      const Mat3 c = quatAt(k).toRotationMatrix();
+      const Vec3 w_nb = w - c.transpose() * w_ie;
+      const Vec3 alpha = (w_b - w_a) / dt;
+      const Vec3 f_true = leverArmAcceleration(w_nb, alpha, r) - c.transpose() * g_n;
+      simulated += dt * accel.apply(f_true);
+      measured += dt * 0.5 * (imu[k].accel + imu[k + 1].accel);
+      all_still = all_still && history[k].still;
+    }
+    const Vec3 accel_residual = (measured - simulated) / span;
+    const double t_mid = 0.5 * (imu[start].t + imu[end].t);
+    for (int i = 0; i < 3; ++i) {
+      const double ea = accel_residual(i) / (accel_white / std::sqrt(span));
+      accel_acc[i].of(all_still).push_back(ea);
+      accel_series[i].t.push_back(t_mid);
+      accel_series[i].value.push_back(ea);
+    }
+    start = end;
+  }
+  for (int i = 0; i < 3; ++i) addBoth(gap, accel_series[i].channel, accel_acc[i]);
+  for (auto& s : accel_series) gap.series.push_back(std::move(s));
+  gap.series.push_back(std::move(heading_series));
+  return gap;
+}
+
+}  // namespace imucal

@@ -1,0 +1,25 @@
+#include "imucal/core/sensor_hypothesis.hpp"
+
+namespace imucal {
+
+SensorHypothesis SensorHypothesis::fromFilter(const FilterConfig& filter) {
+  SensorHypothesis h;
+  h.filter = filter;
+  h.gyro_noise.white = filter.noise.gyro_white;
+  h.gyro_noise.random_walk = filter.noise.gyro_bias_walk;
+  h.accel_noise.white = filter.noise.accel_white;
+  h.accel_noise.random_walk = filter.noise.accel_bias_walk;
+  return h;
+}
+
+std::vector<ImuSample> removeKnownErrors(const std::vector<ImuSample>& imu, const ImuErrorModel& known) {
+  std::vector<ImuSample> out = imu;
+  for (auto& s : out) {
+    s.accel = known.correctAccel(s.accel);
+    // The g-sensitivity acts on the true specific force; the corrected accelerometer is its best estimate.
+    s.gyro = known.correctGyro(s.gyro, s.accel);
+  }
+  return out;
+}
+
+}  // namespace imucal
