@@ -20,7 +20,7 @@ cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm
 trap cleanup EXIT
 mkdir -p "$tmp/state"
 
-"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state" --config "$src/configs/paper-calibrate.yaml" \
+"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state" --calibration-config "$src/configs/paper-calibrate.yaml" \
   > "$tmp/daemon.log" 2>&1 &
 daemon=$!; pids+=("$daemon")
 "$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 120 &
@@ -47,7 +47,7 @@ echo "== I2C drivers: passed"
 kill -INT "$daemon"; wait "$daemon" 2>/dev/null || true
 
 mkdir -p "$tmp/state2"
-"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state2" --config "$src/configs/paper-calibrate.yaml" \
+"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state2" --calibration-config "$src/configs/paper-calibrate.yaml" \
   > "$tmp/daemon2.log" 2>&1 &
 pids+=("$!")
 "$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth2.json" --timeout 120 &
