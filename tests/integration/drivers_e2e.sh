@@ -7,17 +7,8 @@
 # time by imucal-j1939 --candump next to the emulated LIS3MDL -> a fresh imucald -> imucal-cal-check.
 # Usage: drivers_e2e.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
-if [ -z "${IMUCAL_IN_NETNS:-}" ]; then
-  exec unshare -n env IMUCAL_IN_NETNS=1 bash "$0" "$@"
-fi
+source "$(dirname "${BASH_SOURCE[0]}")/private_netns.sh"
 build="$1"; src="$2"
-ip link set lo up
-ip route add 224.0.0.0/4 dev lo
-url="udpm://239.255.76.67:7667?ttl=0"
-tmp="$(mktemp -d)"
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm -rf "$tmp"; }
-trap cleanup EXIT
 mkdir -p "$tmp/state"
 
 "$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state" --calibration-config "$src/configs/paper-calibrate.yaml" \
