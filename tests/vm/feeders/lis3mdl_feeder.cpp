@@ -1,0 +1,111 @@
+// imucal-vm-lis3mdl-feeder: plays an ST LIS3MDL on an i2c-stub address. It pre-loads WHO_AM_I, emulates
+// the self-clearing SOFT_RST/REBOOT bits of CTRL_REG2, and at the sample rate writes the little-endian
+// X/Y/Z field (OUT_X_L 0x28..OUT_Z_H 0x2D) at the configured full scale, then sets ZYXDA in STATUS_REG.
+// The chip auto-increments a multi-byte read only when the sub-address has its MSB set (0xA8); the stub
+// has no such thing, so the same bytes are also written at 0xA8 and either way of reading works.
+// Torn samples: each 6-byte copy is one I2C-block write, serialized against a driver's block read by the
+// adapter lock. Every sample written goes to --written: raw counts and the gauss body values they encode.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "i2c_feeder_options.hpp"
+#include "scenario.hpp"
+#include "smbus.hpp"
+
+namespace {
+
+using imucal::vmtest::SmbusDevice;
+
+namespace reg {
+constexpr std::uint8_t WHO_AM_I = 0x0F;
+constexpr std::uint8_t CTRL_REG2 = 0x21;  // bit 3 REBOOT, bit 2 SOFT_RST (self-clearing on the chip)
+constexpr std::uint8_t STATUS_REG = 0x27; // bit 3 ZYXDA
+constexpr std::uint8_t OUT_X_L = 0x28;
+constexpr std::uint8_t OUT_X_L_AUTOINC = 0xA8;
+constexpr std::uint8_t TEMP_OUT_L = 0x2E;
+}  // namespace reg
+constexpr std::uint8_t kWhoAmI = 0x3D;
+constexpr std::uint8_t kZyxda = 0x08;
+
+// Datasheet sensitivity, LSB/gauss, for the four full scales.
+double lsbPerGauss(int fs_gauss) {
+  switch (fs_gauss) {
+    case 4: return 6842.0;
+    case 8: return 3421.0;
+    case 12: return 2281.0;
+    case 16: return 1711.0;
+    default: throw std::runtime_error("LIS3MDL full scale must be 4, 8, 12 or 16 gauss, not " + std::to_string(fs_gauss));
+  }
+}
+
+struct Options : imucal::vmtest::I2cFeederOptions {
+  Options() { address = 0x1c; }
+  int fs_gauss = 4;
+};
+
+void emulateReset(SmbusDevice& dev, long& resets) {
+  const std::uint8_t v = dev.readByte(reg::CTRL_REG2);
+  if ((v & 0x0C) == 0) return;
+  dev.writeByte(reg::CTRL_REG2, static_cast<std::uint8_t>(v & ~0x0C));
+  ++resets;
+}
+
+int run(const Options& o) {
+  const auto rows = imucal::vmtest::loadScenario(o.scenario);
+  const imucal::vmtest::AxisMap axes(o.axis_map);
+  const double lsb = 1.0 / lsbPerGauss(o.fs_gauss);
+  SmbusDevice dev(o.bus, o.address);
+  dev.writeByte(reg::WHO_AM_I, kWhoAmI);
+  dev.writeByte(reg::STATUS_REG, 0);
+  dev.writeBlock(reg::TEMP_OUT_L, {0x00, 0x00});  // 25 degC
+  std::FILE* log = std::fopen(o.written.c_str(), "w");
+  if (log == nullptr) throw std::runtime_error("cannot write '" + o.written + "'");
+  std::fprintf(log, "k,t_us,mx_raw,my_raw,mz_raw,mx,my,mz,heading\n");
+  const long n = imucal::vmtest::samplesToFeed(o.max_samples, rows.size());
+  long resets = 0;
+  const auto tick = [&] { emulateReset(dev, resets); };
+  const auto write_sample = [&](long k) {
+    const auto& r = rows[static_cast<std::size_t>(k)];
+    const auto m = axes.chipFromBody(r.mag);
+    std::array<std::int16_t, 3> raw{};
+    std::array<double, 3> q{};
+    std::vector<std::uint8_t> bytes;
+    for (int i = 0; i < 3; ++i) {
+      raw[i] = imucal::vmtest::quantize16(m[i], lsb);
+      q[i] = raw[i] * lsb;
+      const auto u = static_cast<std::uint16_t>(raw[i]);
+      bytes.push_back(static_cast<std::uint8_t>(u & 0xff));
+      bytes.push_back(static_cast<std::uint8_t>(u >> 8));
+    }
+    const auto mb = axes.bodyFromChip(q);
+    dev.writeBlock(reg::OUT_X_L, bytes);
+    dev.writeBlock(reg::OUT_X_L_AUTOINC, bytes);
+    dev.writeByte(reg::STATUS_REG, kZyxda);  // last: data-ready never announces a half-written sample
+    std::fprintf(log, "%ld,%lld,%d,%d,%d,%.9g,%.9g,%.9g,%.9g\n", k, static_cast<long long>(imucal::vmtest::realtimeMicros()),
+                 raw[0], raw[1], raw[2], mb[0], mb[1], mb[2], r.heading);
+    std::fflush(log);
+  };
+  imucal::vmtest::feedPaced(n, o.rate_hz, o.linger_ms, write_sample, tick);
+  std::fclose(log);
+  std::cout << "lis3mdl-feeder: wrote " << n << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
+            << SmbusDevice::hex(o.address) << ", emulated " << resets << " soft resets\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"imucal-vm-lis3mdl-feeder: a LIS3MDL on i2c-stub, fed from a scenario"};
+  Options o;
+  imucal::vmtest::addI2cFeederOptions(app, o);
+  app.add_option("--fs-gauss", o.fs_gauss)->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return run(o);
+  } catch (const std::exception& e) {
+    std::cerr << "lis3mdl-feeder: " << e.what() << '\n';
+    return 1;
+  }
+}

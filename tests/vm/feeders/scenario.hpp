@@ -1,0 +1,138 @@
+#pragma once
+// The feeders' input (written on the host by imucal-vm-scenario), the axis map between a chip's axes and
+// body FRD, and the small helpers every feeder shares: pacing, the written-sample log, option parsing.
+#include <time.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace imucal::vmtest {
+
+struct ScenarioRow {
+  double t = 0.0;
+  std::array<double, 3> accel{};  // m/s^2, body FRD
+  std::array<double, 3> gyro{};   // rad/s, body FRD
+  std::array<double, 3> mag{};    // gauss, body FRD
+  double heading = 0.0;           // rad, what a perfect magnetometer driver reports
+};
+
+inline std::vector<ScenarioRow> loadScenario(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read scenario '" + path + "'");
+  std::vector<ScenarioRow> rows;
+  std::string line;
+  std::getline(in, line);  // header
+  for (int lineno = 2; std::getline(in, line); ++lineno) {
+    std::istringstream ss(line);
+    std::vector<double> v;
+    for (std::string cell; std::getline(ss, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
+    if (v.size() != 12) throw std::runtime_error(path + ":" + std::to_string(lineno) + ": expected 12 columns");
+    ScenarioRow r;
+    r.t = v[0];
+    for (int i = 0; i < 3; ++i) {
+      r.accel[i] = v[1 + i];
+      r.gyro[i] = v[4 + i];
+      r.mag[i] = v[7 + i];
+    }
+    r.heading = v[10];
+    rows.push_back(r);
+  }
+  if (rows.empty()) throw std::runtime_error(path + ": no samples");
+  return rows;
+}
+
+// body = M * chip for a signed permutation written "x,-y,-z" (body x = chip x, body y = -chip y, ...).
+class AxisMap {
+ public:
+  explicit AxisMap(const std::string& spec = "x,y,z") {
+    std::istringstream ss(spec);
+    std::string item;
+    for (int i = 0; i < 3; ++i) {
+      if (!std::getline(ss, item, ',') || item.empty()) throw std::runtime_error("axis map '" + spec + "': needs 3 items");
+      sign_[i] = item[0] == '-' ? -1 : 1;
+      const char a = item.back();
+      if (a < 'x' || a > 'z') throw std::runtime_error("axis map '" + spec + "': axis must be x, y or z");
+      chip_axis_[i] = a - 'x';
+    }
+  }
+  std::array<double, 3> chipFromBody(const std::array<double, 3>& body) const {
+    std::array<double, 3> chip{};
+    for (int i = 0; i < 3; ++i) chip[chip_axis_[i]] = sign_[i] * body[i];
+    return chip;
+  }
+  std::array<double, 3> bodyFromChip(const std::array<double, 3>& chip) const {
+    std::array<double, 3> body{};
+    for (int i = 0; i < 3; ++i) body[i] = sign_[i] * chip[chip_axis_[i]];
+    return body;
+  }
+
+ private:
+  std::array<int, 3> sign_{1, 1, 1};
+  std::array<int, 3> chip_axis_{0, 1, 2};
+};
+
+inline std::int64_t realtimeMicros() {
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  return static_cast<std::int64_t>(ts.tv_sec) * 1000000 + ts.tv_nsec / 1000;
+}
+
+// Sleeps until start + k / rate on CLOCK_MONOTONIC (absolute, so the pace does not drift).
+class Pacer {
+ public:
+  explicit Pacer(double rate_hz) : period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) { clock_gettime(CLOCK_MONOTONIC, &start_); }
+  void waitFor(std::int64_t k) const {
+    const std::int64_t ns = start_.tv_nsec + k * period_ns_;
+    timespec at{start_.tv_sec + static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
+    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) != 0) {
+    }
+  }
+
+ private:
+  std::int64_t period_ns_;
+  timespec start_{};
+};
+
+// The feeders' main loop: sample k is written at k / rate; between samples (every ~2 ms) and for
+// linger_ms after the last one, tick() emulates what the chip does on its own (self-clearing reset bits).
+template <class WriteSample, class Tick>
+void feedPaced(long n, double rate_hz, int linger_ms, WriteSample write_sample, Tick tick) {
+  const int sub = std::max(1, static_cast<int>(std::lround(500.0 / rate_hz)));
+  Pacer pace(rate_hz * sub);
+  for (long k = 0; k < n; ++k) {
+    pace.waitFor(k * sub);
+    tick();
+    write_sample(k);
+    for (int s = 1; s < sub; ++s) {
+      pace.waitFor(k * sub + s);
+      tick();
+    }
+  }
+  const long linger_ticks = static_cast<long>(linger_ms * rate_hz * sub / 1000.0);
+  for (long s = 0; s < linger_ticks; ++s) {
+    pace.waitFor(n * sub + s);
+    tick();
+  }
+}
+
+inline long samplesToFeed(long max_samples, std::size_t available) {
+  return max_samples < 0 ? static_cast<long>(available) : std::min<long>(max_samples, static_cast<long>(available));
+}
+
+inline std::int16_t quantize16(double value, double lsb) {
+  const double counts = std::nearbyint(value / lsb);
+  return static_cast<std::int16_t>(std::fmax(-32768.0, std::fmin(32767.0, counts)));
+}
+
+inline int parseInt(const std::string& s) { return static_cast<int>(std::strtol(s.c_str(), nullptr, 0)); }
+
+}  // namespace imucal::vmtest
