@@ -3,8 +3,9 @@
 . /imucal/lib.sh
 ok=1
 # i2c-stub: ICM-42688-P at 0x68 (REG_BANK_SEL 0x76 selects banks 1-4 over 0x00..0x10, where bank 0
-# has nothing: the data, WHO_AM_I and DEVICE_CONFIG stay unbanked), LIS3MDL at 0x1c.
-modprobe i2c-stub chip_addr=0x68,0x1c bank_reg=0x76 bank_mask=0x07 bank_start=0x00 bank_end=0x10 || ok=0
+# has nothing: the data, WHO_AM_I and DEVICE_CONFIG stay unbanked), LIS3MDL at 0x1c. dyndbg=+p turns on
+# its trace of every transfer: the feeders read it to emulate clear-on-read status bits.
+modprobe i2c-stub chip_addr=0x68,0x1c bank_reg=0x76 bank_mask=0x07 bank_start=0x00 bank_end=0x10 dyndbg=+p || ok=0
 modprobe i2c-dev || ok=0
 modprobe vcan || ok=0
 modprobe can-raw || ok=0

@@ -1,10 +1,13 @@
 // imucal-vm-icm42688-feeder: plays a TDK ICM-42688-P on an i2c-stub address. It pre-loads WHO_AM_I,
-// emulates the soft reset the stub cannot (clears DEVICE_CONFIG, restores the reset defaults, flags
-// RESET_DONE), and at the sample rate writes the big-endian temperature/accel/gyro burst (0x1D..0x2A) at
-// the configured full scale, then sets DATA_RDY in INT_STATUS.
-// Torn samples: the 14-byte burst is one I2C-block write, and a driver's burst read is one transfer; the
-// adapter lock serializes the two, so a reader sees either the old or the new sample, never a mix.
+// emulates the soft reset the stub cannot (clears SOFT_RESET_CONFIG, flags RESET_DONE), and at the sample
+// rate writes the 17 bytes 0x1D..0x2D (big-endian temperature, accel, gyro at the configured full scale,
+// TMST_FSYNC, INT_STATUS with DATA_RDY) as ONE I2C-block write.
+// Torn samples cannot happen: a driver's burst read is one transfer too, and the adapter lock serializes
+// them, so a reader sees the old sample or the new one, data and DATA_RDY together.
+// Clear on read: the chip clears DATA_RDY when INT_STATUS is read; the feeder sees the driver's read in
+// i2c-stub's trace (StubTrace) and clears it, so a driver polling at twice the ODR gets each sample once.
 // Every sample written goes to --written: the raw counts and the SI body values they stand for.
+// --check-config: at the end, the registers a driver configured must hold this feeder's full scales.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -13,6 +16,7 @@
 #include "i2c_feeder_options.hpp"
 #include "scenario.hpp"
 #include "smbus.hpp"
+#include "stub_trace.hpp"
 
 namespace {
 
@@ -20,7 +24,7 @@ using imucal::vmtest::SmbusDevice;
 
 namespace reg {
 constexpr std::uint8_t DEVICE_CONFIG = 0x11;  // bit 0 SOFT_RESET_CONFIG, self-clearing on the chip
-constexpr std::uint8_t TEMP_DATA1 = 0x1D;     // start of the 14-byte burst
+constexpr std::uint8_t TEMP_DATA1 = 0x1D;     // start of the burst
 constexpr std::uint8_t INT_STATUS = 0x2D;     // bit 4 RESET_DONE, bit 3 DATA_RDY
 constexpr std::uint8_t PWR_MGMT0 = 0x4E;
 constexpr std::uint8_t GYRO_CONFIG0 = 0x4F;
@@ -36,7 +40,25 @@ constexpr double kTempLsbPerC = 132.48;
 struct Options : imucal::vmtest::I2cFeederOptions {
   Options() { address = 0x68; }
   double accel_fs_g = 2.0, gyro_fs_dps = 250.0, temperature_c = 31.5;
+  bool check_config = false;
 };
+
+// FS_SEL codes (bits 7:5 of GYRO_CONFIG0 / ACCEL_CONFIG0): full scale halves with each code.
+int fsCode(double full_scale, double largest) { return static_cast<int>(std::lround(std::log2(largest / full_scale))); }
+
+// The driver's configuration as this feeder understands the chip: full scales, ODR code 8 (100 Hz) is not
+// checked here (the rate is the feeder's), both sensors in low-noise mode.
+int checkConfig(SmbusDevice& dev, const Options& o) {
+  dev.writeByte(reg::REG_BANK_SEL, 0);
+  const int gyro = dev.readByte(reg::GYRO_CONFIG0), accel = dev.readByte(reg::ACCEL_CONFIG0), pwr = dev.readByte(reg::PWR_MGMT0);
+  const int want_g = fsCode(o.gyro_fs_dps, 2000.0), want_a = fsCode(o.accel_fs_g, 16.0);
+  const bool ok = (gyro >> 5) == want_g && (accel >> 5) == want_a && (pwr & 0x0F) == 0x0F;
+  std::printf("VMCHECK %s icm42688_driver_configured: GYRO_CONFIG0=0x%02x (FS_SEL %d, want %d for %g dps), ACCEL_CONFIG0=0x%02x "
+              "(FS_SEL %d, want %d for %g g), PWR_MGMT0=0x%02x (low-noise both: %s)\n",
+              ok ? "PASS" : "FAIL", gyro, gyro >> 5, want_g, o.gyro_fs_dps, accel, accel >> 5, want_a, o.accel_fs_g, pwr,
+              (pwr & 0x0F) == 0x0F ? "yes" : "NO");
+  return ok ? 0 : 1;
+}
 
 void loadResetDefaults(SmbusDevice& dev) {
   dev.writeByte(reg::REG_BANK_SEL, 0);
@@ -75,6 +97,9 @@ int run(const Options& o) {
   const double accel_lsb = o.accel_fs_g * kG / 32768.0;
   const double gyro_lsb = o.gyro_fs_dps * M_PI / 180.0 / 32768.0;
   const long n = imucal::vmtest::samplesToFeed(o.max_samples, rows.size());
+  imucal::vmtest::StubTrace trace(o.address);
+  imucal::vmtest::ClearOnRead clear_on_read(reg::TEMP_DATA1, {reg::INT_STATUS}, [&] { dev.writeByte(reg::INT_STATUS, 0); });
+  const imucal::vmtest::IdleFn idle = [&](int ms) { trace.wait(ms, std::ref(clear_on_read)); };
   const std::int16_t temp_raw = imucal::vmtest::quantize16(o.temperature_c - 25.0, 1.0 / kTempLsbPerC);
   long resets = 0;
   const auto tick = [&] { emulateReset(dev, resets); };
@@ -96,18 +121,22 @@ int run(const Options& o) {
       put16(burst, graw[i]);
     }
     const auto ab = axes.bodyFromChip(aq), gb = axes.bodyFromChip(gq);
+    burst.insert(burst.end(), {0x00, 0x00, kDataReady});  // TMST_FSYNCH/L, INT_STATUS
+    clear_on_read.noteWrite();
     dev.writeBlock(reg::TEMP_DATA1, burst);
-    dev.writeByte(reg::INT_STATUS, kDataReady);  // last, so data-ready never announces a stale burst
     std::fprintf(log, "%ld,%lld,%d,%d,%d,%d,%d,%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6f\n", k,
                  static_cast<long long>(imucal::vmtest::realtimeMicros()), temp_raw, araw[0], araw[1], araw[2], graw[0],
                  graw[1], graw[2], ab[0], ab[1], ab[2], gb[0], gb[1], gb[2], temp_raw / kTempLsbPerC + 25.0);
     std::fflush(log);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, o.linger_ms, write_sample, tick);
+  imucal::vmtest::feedPaced(n, o.rate_hz, o.linger_ms, write_sample, tick, idle);
   std::fclose(log);
   std::cout << "icm42688-feeder: wrote " << n << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
-            << SmbusDevice::hex(o.address) << ", emulated " << resets << " soft resets\n";
-  return 0;
+            << SmbusDevice::hex(o.address) << ", emulated " << resets << " soft resets; " << clear_on_read.statusReads()
+            << " reads of INT_STATUS, " << clear_on_read.clears() << " cleared DATA_RDY (at most "
+            << clear_on_read.maxLatencyUs() << " us after the read, " << clear_on_read.lateClears() << " later than 3 ms), " << trace.lost() << " trace records lost"
+            << std::endl;
+  return o.check_config ? checkConfig(dev, o) : 0;
 }
 
 }  // namespace
@@ -119,6 +148,7 @@ int main(int argc, char** argv) {
   app.add_option("--accel-fs-g", o.accel_fs_g)->capture_default_str();
   app.add_option("--gyro-fs-dps", o.gyro_fs_dps)->capture_default_str();
   app.add_option("--temperature-c", o.temperature_c)->capture_default_str();
+  app.add_flag("--check-config", o.check_config, "At the end, check the full scales a driver configured");
   CLI11_PARSE(app, argc, argv);
   try {
     return run(o);

@@ -2,6 +2,7 @@
 // The feeders' input (written on the host by imucal-vm-scenario), the axis map between a chip's axes and
 // body FRD, and the small helpers every feeder shares: pacing, the written-sample log, option parsing.
 #include <time.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -86,41 +88,47 @@ inline std::int64_t realtimeMicros() {
   return static_cast<std::int64_t>(ts.tv_sec) * 1000000 + ts.tv_nsec / 1000;
 }
 
-// Sleeps until start + k / rate on CLOCK_MONOTONIC (absolute, so the pace does not drift).
+// Tick k is due at start + k / rate on CLOCK_MONOTONIC (absolute, so the pace does not drift).
 class Pacer {
  public:
-  explicit Pacer(double rate_hz) : period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) { clock_gettime(CLOCK_MONOTONIC, &start_); }
-  void waitFor(std::int64_t k) const {
-    const std::int64_t ns = start_.tv_nsec + k * period_ns_;
-    timespec at{start_.tv_sec + static_cast<time_t>(ns / 1000000000), static_cast<long>(ns % 1000000000)};
-    while (clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &at, nullptr) != 0) {
-    }
-  }
+  explicit Pacer(double rate_hz) : period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) { start_ = nowNs(); }
+  // Nanoseconds until tick k (<= 0 when due).
+  std::int64_t remainingNs(std::int64_t k) const { return start_ + k * period_ns_ - nowNs(); }
 
  private:
+  static std::int64_t nowNs() {
+    timespec ts{};
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return static_cast<std::int64_t>(ts.tv_sec) * 1000000000 + ts.tv_nsec;
+  }
   std::int64_t period_ns_;
-  timespec start_{};
+  std::int64_t start_ = 0;
 };
 
+// Blocks at most `ms` milliseconds; a feeder that watches the stub's trace returns early to react to it.
+using IdleFn = std::function<void(int ms)>;
+inline void sleepMs(int ms) {
+  if (ms > 0) usleep(static_cast<useconds_t>(ms) * 1000);
+}
+
 // The feeders' main loop: sample k is written at k / rate; between samples (every ~2 ms) and for
-// linger_ms after the last one, tick() emulates what the chip does on its own (self-clearing reset bits).
+// linger_ms after the last one, tick() emulates what the chip does on its own (self-clearing reset bits);
+// while waiting, idle() may react to the bus (clear-on-read status).
 template <class WriteSample, class Tick>
-void feedPaced(long n, double rate_hz, int linger_ms, WriteSample write_sample, Tick tick) {
+void feedPaced(long n, double rate_hz, int linger_ms, WriteSample write_sample, Tick tick, const IdleFn& idle = sleepMs) {
   const int sub = std::max(1, static_cast<int>(std::lround(500.0 / rate_hz)));
   Pacer pace(rate_hz * sub);
-  for (long k = 0; k < n; ++k) {
-    pace.waitFor(k * sub);
-    tick();
-    write_sample(k);
-    for (int s = 1; s < sub; ++s) {
-      pace.waitFor(k * sub + s);
-      tick();
-    }
-  }
+  const auto wait_for = [&](std::int64_t t) {
+    for (std::int64_t ns; (ns = pace.remainingNs(t)) > 0;) idle(static_cast<int>((ns + 999999) / 1000000));
+  };
   const long linger_ticks = static_cast<long>(linger_ms * rate_hz * sub / 1000.0);
-  for (long s = 0; s < linger_ticks; ++s) {
-    pace.waitFor(n * sub + s);
+  for (long t = 0; t < n * sub + linger_ticks; ++t) {
+    wait_for(t);
     tick();
+    if (t % sub == 0 && t / sub < n) {
+      idle(0);  // everything the bus did so far belongs to the previous sample
+      write_sample(t / sub);
+    }
   }
 }
 
