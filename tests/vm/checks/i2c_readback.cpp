@@ -3,11 +3,9 @@
 // the identity register, then reads the data block while the feeder runs, decodes it (big or little
 // endian int16) and requires every read to equal a sample in the feeder's log, in non-decreasing order.
 // With --status-reg/--status-bit the read also covers the data-ready flag: the feeder's clear-on-read
-// emulation must show each sample as ready once (a driver polling faster than the ODR relies on it). The
-// emulation reacts to the stub's trace from a process, not in the chip's zero time: a read that lands
-// before its clear sees the flag again. Up to 20 % of the ready reads may do so (measured 1-10 % on a
-// loaded 2-core host; without it every read would, here 75 of 194 reads repeating a sample); the feeder prints how
-// late its clears were, which is where such a repeat comes from.
+// emulation must show each sample as ready exactly once (a driver polling faster than the ODR relies on
+// it). That holds by construction on the VM's single vCPU: the feeder (SCHED_FIFO) is woken by the
+// stub's trace of the read and runs before the reader returns to user space (run-vm-test.sh, -smp 1).
 #include <time.h>
 
 #include <CLI/CLI.hpp>
@@ -90,7 +88,7 @@ int run(const Options& o) {
   }
   const double expected_distinct = std::min<double>(o.reads, static_cast<double>(log.size())) * o.min_distinct_fraction;
   const bool ok = smbus_block && !plain_i2c && id == o.id_value && unmatched == 0 && matched > 0 && distinct >= expected_distinct &&
-                  (o.status_reg < 0 || (ready_reads > 0 && ready_twice * 5 <= ready_reads && ready_reads < matched));
+                  (o.status_reg < 0 || (ready_reads > 0 && ready_twice == 0 && ready_reads < matched));
   std::ostringstream s;
   s << "funcs=0x" << std::hex << dev.funcs() << std::dec << " (I2C block read " << (smbus_block ? "yes" : "NO") << ", plain I2C "
     << (plain_i2c ? "YES" : "no") << "), id 0x" << imucal::vmtest::SmbusDevice::hex(o.id_reg) << "=0x"

@@ -96,7 +96,7 @@ int run(const Options& o) {
   std::fprintf(log, "k,t_us,temp_raw,ax_raw,ay_raw,az_raw,gx_raw,gy_raw,gz_raw,ax,ay,az,gx,gy,gz,temp_c\n");
   const double accel_lsb = o.accel_fs_g * kG / 32768.0;
   const double gyro_lsb = o.gyro_fs_dps * M_PI / 180.0 / 32768.0;
-  const long n = imucal::vmtest::samplesToFeed(o.max_samples, rows.size());
+  const long n = imucal::vmtest::samplesAtRate(rows, o.rate_hz, o.max_samples);
   imucal::vmtest::StubTrace trace(o.address);
   imucal::vmtest::ClearOnRead clear_on_read(reg::TEMP_DATA1, {reg::INT_STATUS}, [&] { dev.writeByte(reg::INT_STATUS, 0); });
   const imucal::vmtest::IdleFn idle = [&](int ms) { trace.wait(ms, std::ref(clear_on_read)); };
@@ -104,7 +104,7 @@ int run(const Options& o) {
   long resets = 0;
   const auto tick = [&] { emulateReset(dev, resets); };
   const auto write_sample = [&](long k) {
-    const auto& r = rows[static_cast<std::size_t>(k)];
+    const auto& r = rows[imucal::vmtest::rowFor(rows, k, o.rate_hz)];
     const auto a = axes.chipFromBody(r.accel), g = axes.chipFromBody(r.gyro);
     std::array<std::int16_t, 3> araw{}, graw{};
     std::array<double, 3> aq{}, gq{};
@@ -129,7 +129,7 @@ int run(const Options& o) {
                  graw[1], graw[2], ab[0], ab[1], ab[2], gb[0], gb[1], gb[2], temp_raw / kTempLsbPerC + 25.0);
     std::fflush(log);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, o.linger_ms, write_sample, tick, idle);
+  imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, tick, idle);
   std::fclose(log);
   std::cout << "icm42688-feeder: wrote " << n << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
             << SmbusDevice::hex(o.address) << ", emulated " << resets << " soft resets; " << clear_on_read.statusReads()

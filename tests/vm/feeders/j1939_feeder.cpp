@@ -1,7 +1,9 @@
 // imucal-vm-j1939-feeder: plays a CAN IMU on a SocketCAN interface (vcan0 in the VM). Per scenario sample
 // it sends PGN 61482 (angular rate) and 61485 (acceleration) from --source, and, interleaved, frames a
 // driver must ignore: the same PGNs from another source address, a short (DLC 5) frame, an 11-bit frame
-// with the same low bits, a remote frame, and an unrelated PGN from the right source.
+// with the same low bits, a remote frame, an unrelated PGN from the right source, and every tenth sample
+// a pair from the right source whose yaw rate is "not available" (0xFFFF) or an error code (0xFE00),
+// which must not be published (so it is not in --samples). Good ARI frames carry a 5 ms latency byte.
 // --frames logs every frame sent (the raw-receive check compares them byte for byte); --samples logs the
 // body-FRD SI values of every good pair, after quantization (what the driver must publish).
 #include <linux/can.h>
@@ -28,10 +30,12 @@ struct Options {
   int source = 0x80, other_source = 0x81;
   std::string scenario, frames, samples;
   // Which signed body axis each J1939 field carries: (pitch, roll, yaw) and (lateral, longitudinal, vertical).
-  std::string rate_fields = "y,x,z", accel_fields = "y,x,z";
+  // Default: J1939 axes x forward, y left, z up, so pitch = -body y, roll = body x, yaw = -body z.
+  std::string rate_fields = "-y,x,-z", accel_fields = "-y,x,-z";
   double rate_hz = 100.0;
   long max_samples = -1;
   bool distractors = true;
+  int latency_half_ms = 10;  // ARI byte 8, 0.5 ms per bit
 };
 
 class CanSocket {
@@ -81,7 +85,7 @@ int run(const Options& o) {
   if (frames == nullptr || samples == nullptr) throw std::runtime_error("cannot write the feeder's logs");
   std::fprintf(frames, "k,kind,id,dlc,data\n");
   std::fprintf(samples, "k,t_us,ax,ay,az,gx,gy,gz\n");
-  const long n = imucal::vmtest::samplesToFeed(o.max_samples, rows.size());
+  const long n = imucal::vmtest::samplesAtRate(rows, o.rate_hz, o.max_samples);
   const double deg = M_PI / 180.0;
   long sent = 0;
   const auto send = [&](long k, const char* kind, const can_frame& f) {
@@ -90,7 +94,7 @@ int run(const Options& o) {
     ++sent;
   };
   const auto write_sample = [&](long k) {
-    const auto& r = rows[static_cast<std::size_t>(k)];
+    const auto& r = rows[imucal::vmtest::rowFor(rows, k, o.rate_hz)];
     std::array<double, 3> rate_degs = rate_map.bodyFromChip(r.gyro), accel = accel_map.bodyFromChip(r.accel);
     std::array<std::uint16_t, 3> rate_raw{}, accel_raw{};
     std::array<double, 3> rate_q{}, accel_q{};
@@ -118,14 +122,22 @@ int run(const Options& o) {
       send(k, "remote", f);
     }
     if (o.distractors && k % 10 == 9) send(k, "other_pgn", extendedFrame(61481, o.source, j::payload({9, 9, 9}, {0, 0, 0}, 0)));
-    send(k, "rate", extendedFrame(j::kPgnAngularRate, o.source, j::payload(rate_raw, {0, 0, 0}, 0)));
+    const auto latency = static_cast<std::uint8_t>(o.latency_half_ms);
+    if (o.distractors && k % 10 == 8) {
+      std::array<std::uint16_t, 3> bad = rate_raw;
+      bad[2] = (k / 10) % 2 ? j::kNotAvailable : 0xFE00;
+      send(k, bad[2] == j::kNotAvailable ? "rate_not_available" : "rate_error", extendedFrame(j::kPgnAngularRate, o.source, j::payload(bad, {0, 0, 0}, latency)));
+      send(k, "accel_of_bad_pair", extendedFrame(j::kPgnAcceleration, o.source, j::payload(accel_raw, {0, 0, 0}, 0)));
+      return;
+    }
+    send(k, "rate", extendedFrame(j::kPgnAngularRate, o.source, j::payload(rate_raw, {0, 0, 0}, latency)));
     send(k, "accel", extendedFrame(j::kPgnAcceleration, o.source, j::payload(accel_raw, {0, 0, 0}, 0)));
     // Back to body axes: the map is a signed permutation, so its inverse is chipFromBody.
     const auto ab = accel_map.chipFromBody(accel_q), gb = rate_map.chipFromBody(rate_q);
     std::fprintf(samples, "%ld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", k, static_cast<long long>(imucal::vmtest::realtimeMicros()),
                  ab[0], ab[1], ab[2], gb[0], gb[1], gb[2]);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, 0, write_sample, [] {});
+  imucal::vmtest::feedPaced(n, o.rate_hz, 0, 0, write_sample, [] {});
   std::fclose(frames);
   std::fclose(samples);
   std::cout << "j1939-feeder: sent " << sent << " frames (" << n << " good pairs from 0x" << std::hex << o.source << std::dec
@@ -149,6 +161,7 @@ int main(int argc, char** argv) {
   app.add_option("--rate", o.rate_hz)->capture_default_str();
   app.add_option("--max-samples", o.max_samples)->capture_default_str();
   app.add_flag("!--no-distractors", o.distractors, "Send only the good frames");
+  app.add_option("--latency-half-ms", o.latency_half_ms, "ARI latency byte (0.5 ms per bit)")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     return run(o);

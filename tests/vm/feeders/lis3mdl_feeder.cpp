@@ -78,7 +78,7 @@ int run(const Options& o) {
   std::FILE* log = std::fopen(o.written.c_str(), "w");
   if (log == nullptr) throw std::runtime_error("cannot write '" + o.written + "'");
   std::fprintf(log, "k,t_us,mx_raw,my_raw,mz_raw,mx,my,mz,heading\n");
-  const long n = imucal::vmtest::samplesToFeed(o.max_samples, rows.size());
+  const long n = imucal::vmtest::samplesAtRate(rows, o.rate_hz, o.max_samples);
   imucal::vmtest::StubTrace trace(o.address);
   const int status_hi = reg::STATUS_REG | reg::AUTO_INCREMENT;
   imucal::vmtest::ClearOnRead clear_on_read(status_hi, {reg::STATUS_REG, status_hi}, [&] {
@@ -89,7 +89,7 @@ int run(const Options& o) {
   long resets = 0;
   const auto tick = [&] { emulateReset(dev, resets); };
   const auto write_sample = [&](long k) {
-    const auto& r = rows[static_cast<std::size_t>(k)];
+    const auto& r = rows[imucal::vmtest::rowFor(rows, k, o.rate_hz)];
     const auto m = axes.chipFromBody(r.mag);
     std::array<std::int16_t, 3> raw{};
     std::array<double, 3> q{};
@@ -109,7 +109,7 @@ int run(const Options& o) {
                  raw[0], raw[1], raw[2], mb[0], mb[1], mb[2], r.heading);
     std::fflush(log);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, o.linger_ms, write_sample, tick, idle);
+  imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, tick, idle);
   std::fclose(log);
   std::cout << "lis3mdl-feeder: wrote " << n << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
             << SmbusDevice::hex(o.address) << ", emulated " << resets << " soft resets; " << clear_on_read.statusReads()

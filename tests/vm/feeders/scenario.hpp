@@ -111,30 +111,45 @@ inline void sleepMs(int ms) {
   if (ms > 0) usleep(static_cast<useconds_t>(ms) * 1000);
 }
 
-// The feeders' main loop: sample k is written at k / rate; between samples (every ~2 ms) and for
-// linger_ms after the last one, tick() emulates what the chip does on its own (self-clearing reset bits);
-// while waiting, idle() may react to the bus (clear-on-read status).
+// The feeders' main loop: after hold_ms (the chip is up, a driver can reset and configure it), sample k
+// is written at k / rate; between samples (every ~2 ms) and for linger_ms after the last one, tick()
+// emulates what the chip does on its own (self-clearing reset bits); while waiting, idle() may react to
+// the bus (clear-on-read status).
 template <class WriteSample, class Tick>
-void feedPaced(long n, double rate_hz, int linger_ms, WriteSample write_sample, Tick tick, const IdleFn& idle = sleepMs) {
+void feedPaced(long n, double rate_hz, int hold_ms, int linger_ms, WriteSample write_sample, Tick tick, const IdleFn& idle = sleepMs) {
   const int sub = std::max(1, static_cast<int>(std::lround(500.0 / rate_hz)));
   Pacer pace(rate_hz * sub);
   const auto wait_for = [&](std::int64_t t) {
     for (std::int64_t ns; (ns = pace.remainingNs(t)) > 0;) idle(static_cast<int>((ns + 999999) / 1000000));
   };
+  const long hold_ticks = static_cast<long>(hold_ms * rate_hz * sub / 1000.0);
   const long linger_ticks = static_cast<long>(linger_ms * rate_hz * sub / 1000.0);
-  for (long t = 0; t < n * sub + linger_ticks; ++t) {
+  for (long t = 0; t < hold_ticks + n * sub + linger_ticks; ++t) {
     wait_for(t);
     tick();
-    if (t % sub == 0 && t / sub < n) {
+    const long s = t - hold_ticks;
+    if (s >= 0 && s % sub == 0 && s / sub < n) {
       idle(0);  // everything the bus did so far belongs to the previous sample
-      write_sample(t / sub);
+      write_sample(s / sub);
     }
   }
 }
 
-inline long samplesToFeed(long max_samples, std::size_t available) {
-  return max_samples < 0 ? static_cast<long>(available) : std::min<long>(max_samples, static_cast<long>(available));
+// The scenario row a feeder running at rate_hz plays as its sample k: the last row at or before k / rate
+// (a 80 Hz magnetometer plays the 100 Hz scenario in real time, not slowed down).
+inline std::size_t rowFor(const std::vector<ScenarioRow>& rows, long k, double rate_hz) {
+  const double t = rows.front().t + static_cast<double>(k) / rate_hz + 1e-9;
+  const auto it = std::upper_bound(rows.begin(), rows.end(), t, [](double v, const ScenarioRow& r) { return v < r.t; });
+  return static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, (it - rows.begin()) - 1));
 }
+
+// How many samples at rate_hz fit in the scenario (or max_samples, if smaller).
+inline long samplesAtRate(const std::vector<ScenarioRow>& rows, double rate_hz, long max_samples) {
+  const double span = rows.back().t - rows.front().t;
+  const long all = static_cast<long>(std::floor(span * rate_hz + 1e-6)) + 1;
+  return max_samples < 0 ? all : std::min(max_samples, all);
+}
+
 
 inline std::int16_t quantize16(double value, double lsb) {
   const double counts = std::nearbyint(value / lsb);
