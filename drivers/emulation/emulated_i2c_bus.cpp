@@ -1,0 +1,28 @@
+#include "imucal/drivers/emulation/emulated_i2c_bus.hpp"
+
+#include <cerrno>
+#include <cstring>
+
+namespace imucal::drivers::emulation {
+
+EmulatedI2cDevice& EmulatedI2cBus::device(std::uint8_t address, std::uint8_t reg) {
+  ++transfers_;
+  if (failures_left_ > 0) {
+    --failures_left_;
+    throw I2cError(deviceName(*this, address) + ": transfer at " + hexByte(reg) + " failed: " + std::strerror(failure_errno_), failure_errno_);
+  }
+  const auto it = devices_.find(address);
+  if (it == devices_.end())
+    throw I2cError(deviceName(*this, address) + ": no device answers (" + std::strerror(ENXIO) + ")", ENXIO);
+  return *it->second;
+}
+
+void EmulatedI2cBus::readRegisters(std::uint8_t address, std::uint8_t reg, std::uint8_t* buffer, std::size_t n) {
+  device(address, reg).read(reg, buffer, n);
+}
+
+void EmulatedI2cBus::writeRegister(std::uint8_t address, std::uint8_t reg, std::uint8_t value) {
+  device(address, reg).write(reg, value);
+}
+
+}  // namespace imucal::drivers::emulation

@@ -1,0 +1,79 @@
+#pragma once
+// TDK ICM-42688-P register map (datasheet DS-000347): the registers and fields this driver and its
+// emulation use, user bank 0 unless noted.
+#include <cstdint>
+
+namespace imucal::drivers::icm42688 {
+
+constexpr std::uint8_t kAddressLow = 0x68;   // AP_AD0 low
+constexpr std::uint8_t kAddressHigh = 0x69;  // AP_AD0 high
+constexpr std::uint8_t kWhoAmIValue = 0x47;
+
+namespace reg {
+constexpr std::uint8_t DEVICE_CONFIG = 0x11;
+constexpr std::uint8_t INT_CONFIG = 0x14;
+constexpr std::uint8_t TEMP_DATA1 = 0x1D;     // first of the burst: temp, accel x/y/z, gyro x/y/z (big-endian)
+constexpr std::uint8_t ACCEL_DATA_X1 = 0x1F;
+constexpr std::uint8_t GYRO_DATA_X1 = 0x25;
+constexpr std::uint8_t TMST_FSYNCH = 0x2B;
+constexpr std::uint8_t INT_STATUS = 0x2D;     // cleared on read
+constexpr std::uint8_t PWR_MGMT0 = 0x4E;
+constexpr std::uint8_t GYRO_CONFIG0 = 0x4F;
+constexpr std::uint8_t ACCEL_CONFIG0 = 0x50;
+constexpr std::uint8_t INT_CONFIG1 = 0x64;
+constexpr std::uint8_t INT_SOURCE0 = 0x65;
+constexpr std::uint8_t WHO_AM_I = 0x75;
+constexpr std::uint8_t REG_BANK_SEL = 0x76;   // present in every bank
+}  // namespace reg
+
+// DEVICE_CONFIG
+constexpr std::uint8_t SOFT_RESET_CONFIG = 1u << 0;
+// INT_CONFIG
+constexpr std::uint8_t INT1_MODE_LATCHED = 1u << 2;
+constexpr std::uint8_t INT1_DRIVE_PUSH_PULL = 1u << 1;
+constexpr std::uint8_t INT1_POLARITY_HIGH = 1u << 0;
+// INT_STATUS
+constexpr std::uint8_t RESET_DONE_INT = 1u << 4;
+constexpr std::uint8_t DATA_RDY_INT = 1u << 3;
+// PWR_MGMT0
+constexpr std::uint8_t TEMP_DIS = 1u << 5;
+constexpr std::uint8_t IDLE = 1u << 4;
+constexpr std::uint8_t GYRO_MODE_MASK = 0b11u << 2;
+constexpr std::uint8_t GYRO_MODE_LOW_NOISE = 0b11u << 2;
+constexpr std::uint8_t ACCEL_MODE_MASK = 0b11u;
+constexpr std::uint8_t ACCEL_MODE_LOW_NOISE = 0b11u;
+// GYRO_CONFIG0 / ACCEL_CONFIG0: full scale in bits 7:5, output data rate in bits 3:0
+constexpr std::uint8_t FS_SEL_SHIFT = 5;
+constexpr std::uint8_t FS_SEL_MASK = 0b111u << 5;
+constexpr std::uint8_t ODR_MASK = 0x0F;
+// INT_CONFIG1: the datasheet requires INT_ASYNC_RESET cleared for the INT pins to work
+constexpr std::uint8_t INT_ASYNC_RESET = 1u << 4;
+// INT_SOURCE0
+constexpr std::uint8_t RESET_DONE_INT1_EN = 1u << 4;
+constexpr std::uint8_t UI_DRDY_INT1_EN = 1u << 3;
+
+// Reset values that differ from 0 (bank 0).
+constexpr std::uint8_t kGyroConfig0Reset = 0x06;   // 2000 dps, 1 kHz
+constexpr std::uint8_t kAccelConfig0Reset = 0x06;  // 16 g, 1 kHz
+constexpr std::uint8_t kIntConfig1Reset = 0x10;
+constexpr std::uint8_t kIntSource0Reset = 0x10;
+constexpr std::uint8_t kIntStatusReset = 0x10;     // RESET_DONE
+
+// Datasheet: wait 1 ms after a soft reset before touching registers; 200 us after leaving OFF mode; the
+// gyro needs 45 ms (datasheet minimum on-time; its output settles within about 30 ms).
+constexpr int kSoftResetWaitUs = 1000;
+constexpr int kPowerUpWaitUs = 200;
+constexpr int kGyroStartupUs = 45000;
+
+// The burst the driver reads: TEMP_DATA1 .. INT_STATUS (temp, accel, gyro, FSYNC stamp, status) = 17 bytes,
+// within one 32-byte SMBus block.
+constexpr std::uint8_t kBurstFirst = reg::TEMP_DATA1;
+constexpr std::size_t kBurstLength = reg::INT_STATUS - reg::TEMP_DATA1 + 1;
+// Every data register reads 0x8000 (-32768) until the sensor has produced a sample.
+constexpr std::int16_t kInvalidSample = -32768;
+
+// Temperature: degC = TEMP_DATA / 132.48 + 25
+constexpr double kTempLsbPerDegC = 132.48;
+constexpr double kTempOffsetDegC = 25.0;
+
+}  // namespace imucal::drivers::icm42688

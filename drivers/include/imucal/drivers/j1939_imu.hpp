@@ -1,0 +1,54 @@
+#pragma once
+// A J1939 IMU as one sample stream: frames filtered by source address and PGN, an angular-rate frame and
+// an acceleration frame paired into one ImuReading (body FRD, SI). A reading is published only when all six
+// values are numbers and no figure of merit says error; not-available codes and error indicators are
+// counted, never turned into numbers.
+#include <cstdint>
+#include <optional>
+
+#include "imucal/drivers/can_frame.hpp"
+#include "imucal/drivers/counters.hpp"
+#include "imucal/drivers/imu_reading.hpp"
+#include "imucal/drivers/j1939.hpp"
+
+namespace imucal::drivers {
+
+struct J1939ImuConfig {
+  std::optional<std::uint8_t> source_address;  // nullopt: lock onto the first IMU source seen
+  std::int64_t pair_window_us = 5000;          // rate and acceleration frames this close belong together
+  // body FRD from the J1939 axes (x longitudinal, y lateral, z vertical; roll, pitch, yaw rate about them).
+  // J1939's y points left and z up, so FRD is (+x, -y, -z).
+  io::AxisMap accel_axis_map{{0, 1, 2}, {1, -1, -1}};
+  io::AxisMap gyro_axis_map{{0, 1, 2}, {1, -1, -1}};
+  bool subtract_latency = true;  // stamp = receive time of the pair's last frame - the reported latency
+};
+
+class J1939Imu {
+ public:
+  explicit J1939Imu(const J1939ImuConfig& config);
+  // Feeds one frame; returns a reading when it completes a pair.
+  std::optional<ImuReading> add(const CanFrame& frame);
+  const Counters& counters() const { return counters_; }
+  std::optional<std::uint8_t> source() const { return source_; }
+
+ private:
+  bool acceptValues(const j1939::Value* values, const j1939::FigureOfMerit* merits);
+  std::optional<ImuReading> pair();
+
+  J1939ImuConfig config_;
+  Counters counters_;
+  std::optional<std::uint8_t> source_;
+  struct PendingRate {
+    std::int64_t utime;
+    j1939::AngularRate rate;
+  };
+  struct PendingAccel {
+    std::int64_t utime;
+    j1939::Acceleration accel;
+  };
+  std::optional<PendingRate> rate_;
+  std::optional<PendingAccel> accel_;
+  std::optional<std::int64_t> last_utime_;
+};
+
+}  // namespace imucal::drivers

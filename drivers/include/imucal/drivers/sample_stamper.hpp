@@ -1,0 +1,26 @@
+#pragma once
+// Sample time stamps and their checks: the data-ready edge's time when there is one and it is fresh,
+// otherwise the read time; time going backwards and gaps (missed samples) counted.
+//
+// The Counters passed in must declare stale_edge, timestamp_backwards and missed_samples.
+#include <cstdint>
+#include <optional>
+
+#include "imucal/drivers/counters.hpp"
+
+namespace imucal::drivers {
+
+class SampleStamper {
+ public:
+  SampleStamper(double rate_hz, Counters& counters);
+  std::int64_t stamp(std::optional<std::int64_t> edge_utime, std::int64_t read_utime);
+  void restart() { last_.reset(); }
+  std::int64_t periodUs() const { return period_us_; }
+
+ private:
+  std::int64_t period_us_;
+  Counters& counters_;
+  std::optional<std::int64_t> last_;
+};
+
+}  // namespace imucal::drivers

@@ -1,0 +1,98 @@
+#include "driver_process.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include "imucal/drivers/clock.hpp"
+#include "imucal/drivers/device_error.hpp"
+#include "imucal/io/config.hpp"
+#include "imucal/io/errors.hpp"
+#include "imucal/io/json_output.hpp"
+#include "imucal/sim/simulator.hpp"
+
+namespace imucal::drivers::node {
+
+static_assert(status::kAccelSaturated == imucal::imu_sample_t::STATUS_ACCEL_SATURATED);
+static_assert(status::kGyroSaturated == imucal::imu_sample_t::STATUS_GYRO_SATURATED);
+static_assert(status::kDeviceTimeWrapped == imucal::imu_sample_t::STATUS_DEVICE_TIME_WRAPPED);
+static_assert(status::kTemperatureInvalid == imucal::imu_sample_t::STATUS_TEMPERATURE_INVALID);
+static_assert(status::kDriverError == imucal::imu_sample_t::STATUS_DRIVER_ERROR);
+
+void addDriverOptions(CLI::App& app, DriverOptions& o, bool with_emulation) {
+  app.add_option("--config", o.config, "Driver configuration (YAML)")->required()->check(CLI::ExistingFile);
+  app.add_option("--lcm-url", o.lcm_url, "LCM provider URL (default: LCM's own default)");
+  app.add_option("--max-samples", o.max_samples, "Exit 0 after publishing this many samples (0 = run until stopped)")->capture_default_str();
+  app.add_option("--sensor-id", o.sensor_id, "Published sensor_id (default: the config's sensor_id)");
+  app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")->capture_default_str();
+  if (!with_emulation) return;
+  app.add_flag("--emulate", o.emulate, "Use a register-level emulation of the chip fed from the simulator instead of the bus");
+  app.add_option("--sim-config", o.sim_config, "With --emulate: simulator config (default: the paper scenario)")->check(CLI::ExistingFile);
+  app.add_option("--seed", o.seed, "With --emulate: simulator seed")->capture_default_str();
+  app.add_option("--truth", o.truth, "With --emulate: write the simulator's truth here (JSON)");
+  app.add_option("--emulate-epoch", o.emulate_epoch, "With --emulate: Unix time (s) of the motion's start, shared by all emulated drivers");
+}
+
+void setupLogging(const std::string& program, const std::string& level) {
+  spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ " + program + ": %v");
+  spdlog::set_level(spdlog::level::from_str(level));
+}
+
+EmulatedMotion makeEmulatedMotion(const DriverOptions& o) {
+  const sim::SimConfig config = o.sim_config.empty() ? sim::paperScenario(5.0 * units::deg, true, o.seed) : io::loadSimConfig(o.sim_config);
+  sim::SimOutput out = sim::simulate(config, o.seed);
+  if (!o.truth.empty()) io::writeJsonFile(o.truth, io::truthToJson(config, out, o.seed));
+  EmulatedMotion m;
+  m.source = std::make_unique<emulation::SimulatedImuSource>(std::move(out));
+  SystemClock clock;
+  m.epoch_utime = o.emulate_epoch > 0.0 ? static_cast<std::int64_t>(std::llround(o.emulate_epoch * 1e6)) : clock.nowUtime() + 1'000'000;
+  return m;
+}
+
+imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const std::string& sensor_id) {
+  imucal::imu_sample_t m{};
+  m.utime = r.utime;
+  m.seq = seq;
+  m.device_time_us = r.device_time_us;
+  for (int i = 0; i < 3; ++i) {
+    m.accel[i] = r.accel[i];
+    m.gyro[i] = r.gyro[i];
+  }
+  m.temperature_c = r.temperature_c;
+  m.status = r.status | (std::isnan(r.temperature_c) ? status::kTemperatureInvalid : 0);
+  m.sensor_id = sensor_id;
+  return m;
+}
+
+CounterLog::CounterLog(EventLoop& loop, double period_s, std::string who, std::function<std::string()> summary)
+    : who_(std::move(who)), summary_(std::move(summary)) {
+  loop.addTimer(period_s, [this] { spdlog::info("{}: counters: {}", who_, summary_()); });
+}
+
+CounterLog::~CounterLog() { spdlog::info("{}: counters at exit: {}", who_, summary_()); }
+
+void verifyPeriodically(EventLoop& loop, double period_s, std::function<int()> verify) {
+  loop.addTimer(period_s, [verify = std::move(verify)] {
+    if (const int n = verify()) spdlog::warn("{} configuration register(s) had changed and were re-applied", n);
+  });
+}
+
+void logStop(const EventLoop& loop, std::int64_t count, const char* what) {
+  spdlog::info("stopping ({}) after {} {}", loop.stopSignal() ? strsignal(loop.stopSignal()) : "sample limit reached", count, what);
+}
+
+int runGuarded(const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const io::InputError& e) {
+    spdlog::critical("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::critical("{}", e.what());
+    return 1;
+  }
+}
+
+}  // namespace imucal::drivers::node

@@ -1,0 +1,100 @@
+#include "imucal/drivers/j1939_imu.hpp"
+
+#include <cmath>
+
+namespace imucal::drivers {
+
+using namespace j1939;
+
+J1939Imu::J1939Imu(const J1939ImuConfig& config)
+    : config_(config),
+      counters_({"frames", "samples", "not_extended", "other_pgn", "other_source", "bad_length", "not_available",
+                 "error_indicator", "reserved_value", "merit_error", "merit_degraded", "unpaired", "timestamp_backwards"}),
+      source_(config.source_address) {}
+
+bool J1939Imu::acceptValues(const Value* values, const FigureOfMerit* merits) {
+  bool ok = true;
+  for (int i = 0; i < 3; ++i) {
+    switch (values[i].state) {
+      case ValueState::Valid: break;
+      case ValueState::NotAvailable: counters_.increment("not_available"); ok = false; break;
+      case ValueState::Error: counters_.increment("error_indicator"); ok = false; break;
+      case ValueState::Reserved: counters_.increment("reserved_value"); ok = false; break;
+    }
+    // A figure of merit "not available" is what a sensor without that diagnostic sends: the value stands.
+    if (merits[i] == FigureOfMerit::Error) {
+      counters_.increment("merit_error");
+      ok = false;
+    } else if (merits[i] == FigureOfMerit::Degraded) {
+      counters_.increment("merit_degraded");
+    }
+  }
+  return ok;
+}
+
+std::optional<ImuReading> J1939Imu::add(const CanFrame& frame) {
+  counters_.increment("frames");
+  if (!frame.extended || frame.remote) {
+    counters_.increment("not_extended");
+    return std::nullopt;
+  }
+  const Identifier id = parseIdentifier(frame.id);
+  if (id.pgn != kPgnAngularRate && id.pgn != kPgnAcceleration) {
+    counters_.increment("other_pgn");
+    return std::nullopt;
+  }
+  if (!source_) source_ = id.source;
+  if (id.source != *source_) {
+    counters_.increment("other_source");
+    return std::nullopt;
+  }
+  if (frame.length != 8) {
+    counters_.increment("bad_length");
+    return std::nullopt;
+  }
+  if (id.pgn == kPgnAngularRate) {
+    if (rate_) counters_.increment("unpaired");
+    rate_ = PendingRate{frame.utime, decodeAngularRate(frame.data)};
+  } else {
+    if (accel_) counters_.increment("unpaired");
+    accel_ = PendingAccel{frame.utime, decodeAcceleration(frame.data)};
+  }
+  return pair();
+}
+
+std::optional<ImuReading> J1939Imu::pair() {
+  if (!rate_ || !accel_) return std::nullopt;
+  if (std::abs(rate_->utime - accel_->utime) > config_.pair_window_us) {
+    counters_.increment("unpaired");  // the older frame's partner never came
+    if (rate_->utime < accel_->utime) rate_.reset();
+    else accel_.reset();
+    return std::nullopt;
+  }
+  const AngularRate r = rate_->rate;
+  const Acceleration a = accel_->accel;
+  std::int64_t utime = std::max(rate_->utime, accel_->utime);
+  rate_.reset();
+  accel_.reset();
+  const Value rates[3] = {r.roll, r.pitch, r.yaw};  // about x, y, z
+  const FigureOfMerit rate_merits[3] = {r.merit[1], r.merit[0], r.merit[2]};
+  const Value accels[3] = {a.longitudinal, a.lateral, a.vertical};  // along x, y, z
+  const FigureOfMerit accel_merits[3] = {a.merit[1], a.merit[0], a.merit[2]};
+  const bool rates_ok = acceptValues(rates, rate_merits);
+  const bool accels_ok = acceptValues(accels, accel_merits);
+  if (!rates_ok || !accels_ok) return std::nullopt;
+  if (config_.subtract_latency && r.latency_s) utime -= static_cast<std::int64_t>(std::llround(*r.latency_s * 1e6));
+  if (last_utime_ && utime <= *last_utime_) {
+    counters_.increment("timestamp_backwards");
+    return std::nullopt;
+  }
+  last_utime_ = utime;
+  ImuReading out;
+  out.utime = utime;
+  out.gyro = config_.gyro_axis_map.apply(Vec3(rates[0].si, rates[1].si, rates[2].si));
+  out.accel = config_.accel_axis_map.apply(Vec3(accels[0].si, accels[1].si, accels[2].si));
+  out.temperature_c = std::nan("");
+  counters_.increment("samples");
+  return out;
+}
+
+}  // namespace imucal::drivers

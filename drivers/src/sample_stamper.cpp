@@ -1,0 +1,30 @@
+#include "imucal/drivers/sample_stamper.hpp"
+
+#include <cmath>
+
+namespace imucal::drivers {
+
+SampleStamper::SampleStamper(double rate_hz, Counters& counters)
+    : period_us_(static_cast<std::int64_t>(std::llround(1e6 / rate_hz))), counters_(counters) {}
+
+std::int64_t SampleStamper::stamp(std::optional<std::int64_t> edge_utime, std::int64_t read_utime) {
+  const std::int64_t tolerance = period_us_ + period_us_ / 2;
+  std::int64_t t = read_utime;
+  if (edge_utime) {
+    // Read more than 1.5 periods after its edge, the registers may already hold the next sample.
+    if (read_utime - *edge_utime > tolerance) counters_.increment("stale_edge");
+    else t = *edge_utime;
+  }
+  if (last_) {
+    if (t <= *last_) {
+      counters_.increment("timestamp_backwards");
+      return t;
+    }
+    const std::int64_t gap = t - *last_;
+    if (gap > tolerance) counters_.increment("missed_samples", static_cast<std::uint64_t>(std::llround(static_cast<double>(gap) / period_us_) - 1));
+  }
+  last_ = t;
+  return t;
+}
+
+}  // namespace imucal::drivers
