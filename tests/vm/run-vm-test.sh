@@ -85,8 +85,12 @@ rc=0
 timeout --foreground -k 10 "$timeout_s" "$qemu" -accel tcg -cpu max -machine q35 -smp 1 -m 1536 -nic none -nographic \
   -no-reboot -device isa-debug-exit,iobase=0xf4,iosize=0x04 \
   -kernel "$kdir/vmlinux" -initrd "$work/initramfs.cpio.gz" \
-  -append "console=ttyS0 loglevel=4 panic=-1 rdinit=/init" < /dev/null > "$work/console.log" 2>&1 || rc=$?
+  -append "console=ttyS0 loglevel=4 panic=-1 rdinit=/init${IMUCAL_VM_DUMP:+ imucal.dump=1}" < /dev/null > "$work/console.log" 2>&1 || rc=$?
 wall="$(since "$t_boot")"
+if [ -n "${IMUCAL_VM_DUMP:-}" ]; then
+  tr -d '\r' < "$work/console.log" | sed -n '/^VMDUMP BEGIN/,/^VMDUMP END/p' | sed '1d;$d' | base64 -d | tar xzf - -C "$work" \
+    && echo "vm_real_kernel: the VM's /tmp/out is in $work/out"
+fi
 tr -d '\r' < "$work/console.log" | grep -aE 'VMCHECK|VMLOG|VMTEST|Kernel panic|^icm|^lis|^j1939' || true
 passes=$(grep -ac '^VMCHECK PASS' "$work/console.log" || true)
 fails=$(grep -ac '^VMCHECK FAIL' "$work/console.log" || true)

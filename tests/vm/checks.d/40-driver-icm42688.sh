@@ -11,13 +11,13 @@ imucal-vm-icm42688-feeder --bus "$(i2c_bus)" --address 0x68 --scenario "$IMUCAL/
 feeder=$!
 sleep 0.2
 t0="$(uptime_s)"
-timeout 60 imucal-icm42688 --config "$cfg" --lcm-url "$LCM_URL" --max-samples 300 --sensor-id imu0
+timeout -s KILL 60 imucal-icm42688 --config "$cfg" --lcm-url "$LCM_URL" --max-samples 300 --sensor-id imu0
 rc=$?
 verdict icm42688_driver_exit "$([ $rc = 0 ] && echo 1 || echo 0)" "exit $rc after $(awk -v a="$t0" -v b="$(uptime_s)" 'BEGIN {printf "%.1f", b - a}') s for --max-samples 300"
 wait "$feeder"
 stop_recording
 imucal-vm-lcm-check --name icm42688_driver_samples --log "$OUT/icm.lcmlog" --channel IMUCAL_IMU --kind imu \
   --expected "$OUT/drv-icm.csv" --sensor-id imu0 --min-samples 300 \
-  --accel-lsb "$(awk 'BEGIN {printf "%.12g", 4 * 9.80665 / 32768}')" \
-  --gyro-lsb "$(awk 'BEGIN {printf "%.12g", 250 * atan2(0, -1) / 180 / 32768}')" \
+  --accel-lsb-g "$(awk 'BEGIN {printf "%.12g", 4 / 32768}')" \
+  --gyro-lsb-dps "$(awk 'BEGIN {printf "%.12g", 250 / 32768}')" \
   --temp-lsb "$(awk 'BEGIN {printf "%.12g", 1 / 132.48}')"

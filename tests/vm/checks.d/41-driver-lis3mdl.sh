@@ -18,7 +18,7 @@ sleep 0.2
 imucal-icm42688 --config "$cfg_imu" --lcm-url "$LCM_URL" --sensor-id imu0 > "$OUT/mag-imu-driver.txt" 2>&1 &
 imu_driver=$!
 t0="$(uptime_s)"
-timeout 60 imucal-lis3mdl --config "$cfg_mag" --lcm-url "$LCM_URL" --max-samples 400 --sensor-id imu0
+timeout -s KILL 60 imucal-lis3mdl --config "$cfg_mag" --lcm-url "$LCM_URL" --max-samples 400 --sensor-id imu0
 rc=$?
 verdict lis3mdl_driver_exit "$([ $rc = 0 ] && echo 1 || echo 0)" "exit $rc after $(awk -v a="$t0" -v b="$(uptime_s)" 'BEGIN {printf "%.1f", b - a}') s for --max-samples 400"
 wait "$mag_feeder"

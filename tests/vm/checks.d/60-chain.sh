@@ -36,8 +36,8 @@ tail -n 2 "$OUT/chain-icm-driver.txt" "$OUT/chain-lis-driver.txt"
 cat "$OUT/chain-cal-check.txt"
 imucal-vm-lcm-check --name chain_imu_samples --log "$OUT/chain.lcmlog" --channel IMUCAL_IMU --kind imu \
   --expected "$OUT/chain-icm.csv" --sensor-id imu0 --min-samples 2900 \
-  --accel-lsb "$(awk 'BEGIN {printf "%.12g", 4 * 9.80665 / 32768}')" \
-  --gyro-lsb "$(awk 'BEGIN {printf "%.12g", 250 * atan2(0, -1) / 180 / 32768}')"
+  --accel-lsb-g "$(awk 'BEGIN {printf "%.12g", 4 / 32768}')" \
+  --gyro-lsb-dps "$(awk 'BEGIN {printf "%.12g", 250 / 32768}')"
 imucal-vm-lcm-check --name chain_headings --log "$OUT/chain.lcmlog" --channel IMUCAL_HEADING --kind heading \
   --expected "$OUT/chain-lis.csv" --min-samples 2300 --heading-tol-deg 0.25
 verdict chain_calibration "$([ $rc = 0 ] && echo 1 || echo 0)" \

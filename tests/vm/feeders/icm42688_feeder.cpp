@@ -69,17 +69,6 @@ void loadResetDefaults(SmbusDevice& dev) {
   dev.writeByte(reg::DEVICE_CONFIG, 0x00);
 }
 
-// The chip clears SOFT_RESET_CONFIG itself and flags RESET_DONE; the stub only stores bytes. The reset
-// defaults are not re-loaded here: a driver that configures within the feeder's 2 ms tick would see its
-// configuration wiped by a race the real chip does not have (it holds the bus off while resetting).
-void emulateReset(SmbusDevice& dev, long& resets) {
-  const std::uint8_t v = dev.readByte(reg::DEVICE_CONFIG);
-  if ((v & 0x01) == 0) return;
-  dev.writeByte(reg::DEVICE_CONFIG, static_cast<std::uint8_t>(v & ~0x01));
-  dev.writeByte(reg::INT_STATUS, kResetDone);
-  ++resets;
-}
-
 void put16(std::vector<std::uint8_t>& b, std::int16_t v) {
   b.push_back(static_cast<std::uint8_t>((static_cast<std::uint16_t>(v) >> 8) & 0xff));
   b.push_back(static_cast<std::uint8_t>(static_cast<std::uint16_t>(v) & 0xff));
@@ -99,10 +88,19 @@ int run(const Options& o) {
   const long n = imucal::vmtest::samplesAtRate(rows, o.rate_hz, o.max_samples);
   imucal::vmtest::StubTrace trace(o.address);
   imucal::vmtest::ClearOnRead clear_on_read(reg::TEMP_DATA1, {reg::INT_STATUS}, [&] { dev.writeByte(reg::INT_STATUS, 0); });
-  const imucal::vmtest::IdleFn idle = [&](int ms) { trace.wait(ms, std::ref(clear_on_read)); };
+  // The chip clears SOFT_RESET_CONFIG itself and flags RESET_DONE; the stub only stores bytes. The reset
+  // defaults are not re-loaded: the driver configures right after, and the chip would not lose that.
+  imucal::vmtest::SelfClearing reset(reg::DEVICE_CONFIG, 0x01, [&](int v) {
+    dev.writeByte(reg::DEVICE_CONFIG, static_cast<std::uint8_t>(v & ~0x01));
+    dev.writeByte(reg::INT_STATUS, kResetDone);
+  });
+  const imucal::vmtest::IdleFn idle = [&](int ms) {
+    trace.wait(ms, [&](const imucal::vmtest::StubTrace::Transfer& t) {
+      reset(t);
+      clear_on_read(t);
+    });
+  };
   const std::int16_t temp_raw = imucal::vmtest::quantize16(o.temperature_c - 25.0, 1.0 / kTempLsbPerC);
-  long resets = 0;
-  const auto tick = [&] { emulateReset(dev, resets); };
   const auto write_sample = [&](long k) {
     const auto& r = rows[imucal::vmtest::rowFor(rows, k, o.rate_hz)];
     const auto a = axes.chipFromBody(r.accel), g = axes.chipFromBody(r.gyro);
@@ -129,10 +127,10 @@ int run(const Options& o) {
                  graw[1], graw[2], ab[0], ab[1], ab[2], gb[0], gb[1], gb[2], temp_raw / kTempLsbPerC + 25.0);
     std::fflush(log);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, tick, idle);
+  imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, idle);
   std::fclose(log);
   std::cout << "icm42688-feeder: wrote " << n << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
-            << SmbusDevice::hex(o.address) << ", emulated " << resets << " soft resets; " << clear_on_read.statusReads()
+            << SmbusDevice::hex(o.address) << ", emulated " << reset.count() << " soft resets; " << clear_on_read.statusReads()
             << " reads of INT_STATUS, " << clear_on_read.clears() << " cleared DATA_RDY (at most "
             << clear_on_read.maxLatencyUs() << " us after the read, " << clear_on_read.lateClears() << " later than 3 ms), " << trace.lost() << " trace records lost"
             << std::endl;

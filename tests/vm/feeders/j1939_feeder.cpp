@@ -137,7 +137,7 @@ int run(const Options& o) {
     std::fprintf(samples, "%ld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", k, static_cast<long long>(imucal::vmtest::realtimeMicros()),
                  ab[0], ab[1], ab[2], gb[0], gb[1], gb[2]);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, 0, 0, write_sample, [] {});
+  imucal::vmtest::feedPaced(n, o.rate_hz, 0, 0, write_sample);
   std::fclose(frames);
   std::fclose(samples);
   std::cout << "j1939-feeder: sent " << sent << " frames (" << n << " good pairs from 0x" << std::hex << o.source << std::dec

@@ -60,13 +60,6 @@ int checkConfig(SmbusDevice& dev, const Options& o) {
   return ok ? 0 : 1;
 }
 
-void emulateReset(SmbusDevice& dev, long& resets) {
-  const std::uint8_t v = dev.readByte(reg::CTRL_REG2);
-  if ((v & 0x0C) == 0) return;
-  dev.writeByte(reg::CTRL_REG2, static_cast<std::uint8_t>(v & ~0x0C));
-  ++resets;
-}
-
 int run(const Options& o) {
   const auto rows = imucal::vmtest::loadScenario(o.scenario);
   const imucal::vmtest::AxisMap axes(o.axis_map);
@@ -85,9 +78,15 @@ int run(const Options& o) {
     dev.writeByte(reg::STATUS_REG, 0);
     dev.writeByte(static_cast<std::uint8_t>(status_hi), 0);
   });
-  const imucal::vmtest::IdleFn idle = [&](int ms) { trace.wait(ms, std::ref(clear_on_read)); };
-  long resets = 0;
-  const auto tick = [&] { emulateReset(dev, resets); };
+  imucal::vmtest::SelfClearing reset(reg::CTRL_REG2, 0x0C, [&](int v) {
+    dev.writeByte(reg::CTRL_REG2, static_cast<std::uint8_t>(v & ~0x0C));
+  });
+  const imucal::vmtest::IdleFn idle = [&](int ms) {
+    trace.wait(ms, [&](const imucal::vmtest::StubTrace::Transfer& t) {
+      reset(t);
+      clear_on_read(t);
+    });
+  };
   const auto write_sample = [&](long k) {
     const auto& r = rows[imucal::vmtest::rowFor(rows, k, o.rate_hz)];
     const auto m = axes.chipFromBody(r.mag);
@@ -109,10 +108,10 @@ int run(const Options& o) {
                  raw[0], raw[1], raw[2], mb[0], mb[1], mb[2], r.heading);
     std::fflush(log);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, tick, idle);
+  imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, idle);
   std::fclose(log);
   std::cout << "lis3mdl-feeder: wrote " << n << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
-            << SmbusDevice::hex(o.address) << ", emulated " << resets << " soft resets; " << clear_on_read.statusReads()
+            << SmbusDevice::hex(o.address) << ", emulated " << reset.count() << " soft resets; " << clear_on_read.statusReads()
             << " reads of STATUS_REG, " << clear_on_read.clears() << " cleared ZYXDA (at most "
             << clear_on_read.maxLatencyUs() << " us after the read, " << clear_on_read.lateClears() << " later than 3 ms), " << trace.lost() << " trace records lost"
             << std::endl;

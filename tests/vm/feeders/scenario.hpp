@@ -88,11 +88,11 @@ inline std::int64_t realtimeMicros() {
   return static_cast<std::int64_t>(ts.tv_sec) * 1000000 + ts.tv_nsec / 1000;
 }
 
-// Tick k is due at start + k / rate on CLOCK_MONOTONIC (absolute, so the pace does not drift).
+// Sample k is due at start + offset + k / rate on CLOCK_MONOTONIC (absolute, so the pace does not drift).
 class Pacer {
  public:
-  explicit Pacer(double rate_hz) : period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) { start_ = nowNs(); }
-  // Nanoseconds until tick k (<= 0 when due).
+  Pacer(double rate_hz, std::int64_t offset_ns) : period_ns_(static_cast<std::int64_t>(1e9 / rate_hz)) { start_ = nowNs() + offset_ns; }
+  // Nanoseconds until sample k (<= 0 when due).
   std::int64_t remainingNs(std::int64_t k) const { return start_ + k * period_ns_ - nowNs(); }
 
  private:
@@ -112,27 +112,22 @@ inline void sleepMs(int ms) {
 }
 
 // The feeders' main loop: after hold_ms (the chip is up, a driver can reset and configure it), sample k
-// is written at k / rate; between samples (every ~2 ms) and for linger_ms after the last one, tick()
-// emulates what the chip does on its own (self-clearing reset bits); while waiting, idle() may react to
-// the bus (clear-on-read status).
-template <class WriteSample, class Tick>
-void feedPaced(long n, double rate_hz, int hold_ms, int linger_ms, WriteSample write_sample, Tick tick, const IdleFn& idle = sleepMs) {
-  const int sub = std::max(1, static_cast<int>(std::lround(500.0 / rate_hz)));
-  Pacer pace(rate_hz * sub);
-  const auto wait_for = [&](std::int64_t t) {
-    for (std::int64_t ns; (ns = pace.remainingNs(t)) > 0;) idle(static_cast<int>((ns + 999999) / 1000000));
+// is written at k / rate, and the loop goes on for linger_ms after the last one. In between, idle()
+// reacts to the bus (an I2C feeder answers resets and clears status on read from the stub's trace), so
+// nothing polls: under TCG on one vCPU a polling feeder would starve the driver it feeds.
+template <class WriteSample>
+void feedPaced(long n, double rate_hz, int hold_ms, int linger_ms, WriteSample write_sample, const IdleFn& idle = sleepMs) {
+  Pacer pace(rate_hz, static_cast<std::int64_t>(hold_ms) * 1000000);
+  const auto wait_for = [&](std::int64_t k) {
+    for (std::int64_t ns; (ns = pace.remainingNs(k)) > 0;) idle(static_cast<int>((ns + 999999) / 1000000));
   };
-  const long hold_ticks = static_cast<long>(hold_ms * rate_hz * sub / 1000.0);
-  const long linger_ticks = static_cast<long>(linger_ms * rate_hz * sub / 1000.0);
-  for (long t = 0; t < hold_ticks + n * sub + linger_ticks; ++t) {
-    wait_for(t);
-    tick();
-    const long s = t - hold_ticks;
-    if (s >= 0 && s % sub == 0 && s / sub < n) {
-      idle(0);  // everything the bus did so far belongs to the previous sample
-      write_sample(s / sub);
-    }
+  for (long k = 0; k < n; ++k) {
+    wait_for(k);
+    idle(0);  // everything the bus did so far belongs to the previous sample
+    write_sample(k);
   }
+  const long linger = static_cast<long>(std::ceil(linger_ms * rate_hz / 1000.0));
+  wait_for(n + linger);
 }
 
 // The scenario row a feeder running at rate_hz plays as its sample k: the last row at or before k / rate

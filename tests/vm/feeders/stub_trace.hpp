@@ -28,6 +28,7 @@ class StubTrace {
     int first = 0;  // first register
     long long kernel_us = 0;  // when the kernel did it (printk clock)
     bool single_byte = false;
+    int value = 0;            // the byte, for single-byte transfers
   };
 
   explicit StubTrace(int address) : address_(address) {
@@ -47,9 +48,8 @@ class StubTrace {
 
   // Waits up to timeout_ms for trace lines and hands every I2C-block transfer of our address to `on`.
   void wait(int timeout_ms, const std::function<void(const Transfer&)>& on) {
-    // At most 1 ms per poll: a fallback should a trace wakeup ever be deferred.
     pollfd p{fd_, POLLIN, 0};
-    ::poll(&p, 1, timeout_ms < 1 ? timeout_ms : 1);
+    ::poll(&p, 1, timeout_ms);
     drain(on);
   }
   void drain(const std::function<void(const Transfer&)>& on) {
@@ -77,7 +77,8 @@ class StubTrace {
         t = Transfer{std::strcmp(verb, "read") == 0, static_cast<int>(len), static_cast<int>(first), static_cast<long long>(kernel_us), false};
       } else if (const char* bt = std::strstr(msg, "smbus byte data - addr ")) {
         if (std::sscanf(bt, "smbus byte data - addr 0x%x, %7s 0x%x at 0x%x", &addr, verb, &value, &first) != 4) continue;
-        t = Transfer{std::strcmp(verb, "read") == 0, 1, static_cast<int>(first), static_cast<long long>(kernel_us), true};
+        t = Transfer{std::strcmp(verb, "read") == 0, 1, static_cast<int>(first), static_cast<long long>(kernel_us), true,
+                     static_cast<int>(value)};
       } else {
         continue;
       }
@@ -144,6 +145,24 @@ class ClearOnRead {
   long issued_ = 0, seen_ = 0;
   long clears_ = 0, status_reads_ = 0, late_ = 0;
   long long max_latency_us_ = 0, pending_read_us_ = -1;
+};
+
+// Bits the chip clears by itself after a driver sets them (soft reset): seen in the trace as the driver's
+// byte write of `reg` with any of `mask`, answered by `clear(value)` at once.
+class SelfClearing {
+ public:
+  SelfClearing(int reg, int mask, std::function<void(int value)> clear) : reg_(reg), mask_(mask), clear_(std::move(clear)) {}
+  void operator()(const StubTrace::Transfer& t) {
+    if (!t.single_byte || t.read || t.first != reg_ || (t.value & mask_) == 0) return;
+    clear_(t.value);
+    ++count_;
+  }
+  long count() const { return count_; }
+
+ private:
+  int reg_, mask_;
+  std::function<void(int)> clear_;
+  long count_ = 0;
 };
 
 }  // namespace imucal::vmtest
