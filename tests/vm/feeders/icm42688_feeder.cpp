@@ -127,9 +127,9 @@ int run(const Options& o) {
                  graw[1], graw[2], ab[0], ab[1], ab[2], gb[0], gb[1], gb[2], temp_raw / kTempLsbPerC + 25.0);
     std::fflush(log);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, idle);
+  const long written = imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, idle);
   std::fclose(log);
-  std::cout << "icm42688-feeder: wrote " << n << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
+  std::cout << "icm42688-feeder: wrote " << written << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
             << SmbusDevice::hex(o.address) << ", emulated " << reset.count() << " soft resets; " << clear_on_read.statusReads()
             << " reads of INT_STATUS, " << clear_on_read.clears() << " cleared DATA_RDY (at most "
             << clear_on_read.maxLatencyUs() << " us after the read, " << clear_on_read.lateClears() << " later than 3 ms), " << trace.lost() << " trace records lost"

@@ -80,6 +80,7 @@ int run(const Options& o) {
   // AxisMap's bodyFromChip picks signed components: field i = sign_i * body[axis_i].
   const imucal::vmtest::AxisMap rate_map(o.rate_fields), accel_map(o.accel_fields);
   CanSocket can(o.interface);
+  imucal::vmtest::runAsRealtime();  // a pair's two frames must not be split by the driver they wake
   std::FILE* frames = std::fopen(o.frames.c_str(), "w");
   std::FILE* samples = std::fopen(o.samples.c_str(), "w");
   if (frames == nullptr || samples == nullptr) throw std::runtime_error("cannot write the feeder's logs");
@@ -137,10 +138,10 @@ int run(const Options& o) {
     std::fprintf(samples, "%ld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", k, static_cast<long long>(imucal::vmtest::realtimeMicros()),
                  ab[0], ab[1], ab[2], gb[0], gb[1], gb[2]);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, 0, 0, write_sample);
+  const long written = imucal::vmtest::feedPaced(n, o.rate_hz, 0, 0, write_sample, imucal::vmtest::sleepMs, true);
   std::fclose(frames);
   std::fclose(samples);
-  std::cout << "j1939-feeder: sent " << sent << " frames (" << n << " good pairs from 0x" << std::hex << o.source << std::dec
+  std::cout << "j1939-feeder: sent " << sent << " frames (" << written << " samples from 0x" << std::hex << o.source << std::dec
             << ") on " << o.interface << '\n';
   return 0;
 }

@@ -66,7 +66,11 @@ int run(const Options& o) {
   const double lsb = 1.0 / lsbPerGauss(o.fs_gauss);
   SmbusDevice dev(o.bus, o.address);
   dev.writeByte(reg::WHO_AM_I, kWhoAmI);
-  dev.writeByte(reg::STATUS_REG, 0);
+  // A fresh chip: no data ready at either sub-address (an earlier check may have left a sample there,
+  // which a driver would publish as its first: seen as a stale, mirrored heading).
+  const std::vector<std::uint8_t> no_sample(7, 0);
+  dev.writeBlock(reg::STATUS_REG, no_sample);
+  dev.writeBlock(static_cast<std::uint8_t>(reg::STATUS_REG | reg::AUTO_INCREMENT), no_sample);
   dev.writeBlock(reg::TEMP_OUT_L, {0x00, 0x00});  // 25 degC
   std::FILE* log = std::fopen(o.written.c_str(), "w");
   if (log == nullptr) throw std::runtime_error("cannot write '" + o.written + "'");
@@ -108,9 +112,9 @@ int run(const Options& o) {
                  raw[0], raw[1], raw[2], mb[0], mb[1], mb[2], r.heading);
     std::fflush(log);
   };
-  imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, idle);
+  const long written = imucal::vmtest::feedPaced(n, o.rate_hz, o.hold_ms, o.linger_ms, write_sample, idle);
   std::fclose(log);
-  std::cout << "lis3mdl-feeder: wrote " << n << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
+  std::cout << "lis3mdl-feeder: wrote " << written << " samples at " << o.rate_hz << " Hz to " << o.bus << ":0x"
             << SmbusDevice::hex(o.address) << ", emulated " << reset.count() << " soft resets; " << clear_on_read.statusReads()
             << " reads of STATUS_REG, " << clear_on_read.clears() << " cleared ZYXDA (at most "
             << clear_on_read.maxLatencyUs() << " us after the read, " << clear_on_read.lateClears() << " later than 3 ms), " << trace.lost() << " trace records lost"
