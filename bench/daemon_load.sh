@@ -3,12 +3,8 @@
 # calibration) at 100 Hz, 1 kHz and 8 kHz IMU input, published in real time by imucal-sim-pub. Runs in a
 # private network namespace (lo only). Usage: bench/daemon_load.sh BUILD_DIR
 set -euo pipefail
-if [ -z "${IMUCAL_IN_NETNS:-}" ]; then exec unshare -n env IMUCAL_IN_NETNS=1 bash "$0" "$@"; fi
+source "$(dirname "${BASH_SOURCE[0]}")/../tests/integration/private_netns.sh"
 build="$1"
-ip link set lo up
-ip route add 224.0.0.0/4 dev lo
-url="udpm://239.255.76.67:7667?ttl=0"
-tmp="$(mktemp -d)"
 trap 'kill -9 $(jobs -p) 2>/dev/null || true; rm -rf "$tmp"' EXIT
 ticks=$(getconf CLK_TCK)
 printf '%8s %10s %12s %12s %s\n' rate_hz cpu_pct peak_rss_mb latency_ms result
@@ -25,7 +21,7 @@ imu:
   gyro: {bias_deg_per_h: [1200, -1400, 1100], arw_deg_per_sqrt_h: 0.3}
 heading: {enabled: true, rate_hz: 100, noise_deg: 5}
 YAML
-  "$build/daemon/imucald" --lcm-url "$url" --config "$(dirname "$0")/../configs/paper-calibrate.yaml" > "$tmp/d.log" 2>&1 &
+  "$build/daemon/imucald" --lcm-url "$url" --calibration-config "$(dirname "$0")/../configs/paper-calibrate.yaml" > "$tmp/d.log" 2>&1 &
   daemon=$!
   "$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 60 > "$tmp/check.log" 2>&1 &
   check=$!

@@ -13,6 +13,8 @@ packages=(
   libsystemd-dev
   # The real-kernel test (tests/vm): qemu boots Debian's kernel with a busybox-static initramfs.
   qemu-system-x86 busybox-static cpio xz-utils
+  # The lcm-spy check: a virtual X display, a screenshot of Spy's window and OCR to read its table.
+  xvfb x11-utils imagemagick tesseract-ocr tesseract-ocr-eng
   # drivers/: GPIO data-ready lines through libgpiod 1.6 (v1 API); can-utils for candump/cansend (logs to
   # replay, feeding vcan in the VM test).
   libgpiod-dev can-utils

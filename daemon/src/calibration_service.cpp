@@ -1,16 +1,35 @@
 #include "imucal/daemon/calibration_service.hpp"
 
+#include <sys/eventfd.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
 #include <cmath>
 #include <exception>
+#include <set>
 
 namespace imucal::daemon {
 
-CalibrationService::CalibrationService(ServiceConfig config) : config_(std::move(config)) {}
+CalibrationService::CalibrationService(ServiceConfig config) : config_(std::move(config)) {
+  if (config_.background_calibration) {
+    wake_fd_ = ::eventfd(0, EFD_CLOEXEC | EFD_NONBLOCK);
+    if (wake_fd_ < 0) throw std::runtime_error(std::string("eventfd: ") + std::strerror(errno));
+  }
+}
+
+CalibrationService::~CalibrationService() {
+  for (auto& [id, sn] : sensors_)
+    if (sn.worker.joinable()) sn.worker.join();
+  if (wake_fd_ >= 0) ::close(wake_fd_);
+}
 
 CalibrationService::Sensor& CalibrationService::sensor(const std::string& id) {
   auto it = sensors_.find(id);
   if (it == sensors_.end()) {
-    it = sensors_.emplace(id, Sensor{InputGate(config_.gate), SessionDetector(config_.session)}).first;
+    it = sensors_.emplace(id, Sensor{InputGate(config_.gate), SessionDetector(config_.session), false, {}, {}}).first;
     reports_[id].sensor_id = id;
   }
   return it->second;
@@ -28,7 +47,34 @@ bool CalibrationService::restore(const std::string& id) {
   return true;
 }
 
-void CalibrationService::trigger(const std::string& id) { sensor(id).detector.reset(); }
+bool CalibrationService::allowed(const std::string& id) const {
+  return config_.sensors.empty() || std::find(config_.sensors.begin(), config_.sensors.end(), id) != config_.sensors.end();
+}
+
+bool CalibrationService::trigger(const std::string& id) {
+  std::set<std::string> ids;
+  if (!id.empty()) {
+    if (!allowed(id)) return false;
+    ids.insert(id);
+  } else {
+    ids.insert(config_.sensors.begin(), config_.sensors.end());
+    for (const auto& [known, unused] : sensors_) ids.insert(known);
+  }
+  for (const auto& i : ids) {
+    Sensor& sn = sensor(i);
+    sn.detector.reset();
+    sn.armed = true;
+  }
+  return !ids.empty();
+}
+
+void CalibrationService::reconfigure(ServiceConfig config) {
+  config_ = std::move(config);
+  for (auto& [id, sn] : sensors_) {
+    sn.gate.setConfig(config_.gate);
+    sn.detector.setConfig(config_.session);
+  }
+}
 
 bool CalibrationService::onHeading(const HeadingSample& h) {
   if (!std::isfinite(h.t) || !std::isfinite(h.heading) || (!headings_.empty() && h.t <= headings_.back().t)) {
@@ -44,17 +90,22 @@ bool CalibrationService::onHeading(const HeadingSample& h) {
 }
 
 bool CalibrationService::onImu(const std::string& id, const ImuSample& s, std::int64_t sequence) {
+  if (!allowed(id)) {
+    ++unknown_sensor_rejected_;
+    return false;
+  }
   Sensor& sn = sensor(id);
   SensorReport& report = reports_[id];
   const Verdict v = sn.gate.check(s, sequence);
   report.imu = sn.gate.counters();
   if (v != Verdict::Accept && v != Verdict::Gap) return false;
   if (v == Verdict::Gap) sn.detector.reset();  // a session must not span a hole in the data
+  if (!config_.automatic_sessions && !sn.armed) return false;
   const SessionPhase before = sn.detector.phase();
   std::optional<Session> session = sn.detector.push(s);
   if (session) {
-    finishSession(id, *session);
-    return true;
+    sn.armed = false;
+    return finishSession(id, *session);
   }
   const bool turning = sn.detector.phase() == SessionPhase::Turning || sn.detector.phase() == SessionPhase::TrailStill;
   const bool was_turning = before == SessionPhase::Turning || before == SessionPhase::TrailStill;
@@ -70,44 +121,59 @@ bool CalibrationService::onImu(const std::string& id, const ImuSample& s, std::i
   return false;
 }
 
-void CalibrationService::finishSession(const std::string& id, const Session& session) {
-  SensorReport& report = reports_[id];
-  std::vector<HeadingSample> heading;
-  const double t0 = session.imu.front().t, t1 = session.imu.back().t;
-  for (const auto& h : headings_) {
-    if (h.t >= t0 && h.t <= t1) heading.push_back(h);
+bool CalibrationService::finishSession(const std::string& id, const Session& session) {
+  Sensor& sn = sensors_.at(id);
+  // A sensor calibrates one session at a time: a new one waits for the last (only in a fast replay).
+  if (sn.pending.valid()) apply(takePending(sn));
+  std::vector<HeadingSample> heading(headings_.begin(), headings_.end());
+  if (!config_.background_calibration) {
+    apply(calibrateSession(id, session.imu, heading, config_.filter, config_.state_dir));
+    return true;
   }
-  FilterConfig filter = config_.filter;
-  filter.measurements.heading = filter.measurements.heading && !heading.empty();
-  try {
-    const CalibrationResult result = calibrate(session.imu, heading, filter);
-    StoredCalibration c;
-    c.sensor_id = id;
-    c.utime_s = t1;
-    c.names = result.names;
-    c.values.assign(result.estimate.data(), result.estimate.data() + result.estimate.size());
-    c.sigmas.assign(result.sigma.data(), result.sigma.data() + result.sigma.size());
-    c.converged = result.converged;
-    c.model = std::to_string(result.layout.size) + "-state ESKF, " + std::to_string(result.passes_run) + " passes" +
-              (filter.measurements.heading ? ", heading" : ", no heading");
-    // Accelerometer and x/y gyro biases must converge; gyro z needs heading and may stay open.
-    bool good = true;
-    for (int j = 0; j < 5; ++j) good = good && result.converged[static_cast<std::size_t>(j)];
-    report.last_stats = result.stats;
-    if (!good) {
-      report.state = CalibrationState::Failed;
-      report.failure = "session did not converge";
-      return;
+  // The result is set before the wake-up is written, so collectFinished() always finds it ready.
+  std::promise<SessionOutcome> promise;
+  sn.pending = promise.get_future();
+  sn.worker = std::thread([this, id, imu = session.imu, heading = std::move(heading), filter = config_.filter,
+                           dir = config_.state_dir, promise = std::move(promise)]() mutable {
+    promise.set_value(calibrateSession(id, imu, heading, filter, dir));
+    const std::uint64_t one = 1;
+    // An eventfd write of 1 fails only on counter overflow, impossible at one write per session.
+    [[maybe_unused]] const ssize_t written = ::write(wake_fd_, &one, sizeof one);
+  });
+  return false;
+}
+
+std::vector<std::string> CalibrationService::collectFinished() {
+  std::uint64_t count = 0;
+  if (wake_fd_ >= 0 && ::read(wake_fd_, &count, sizeof count) < 0) count = 0;
+  std::vector<std::string> changed;
+  for (auto& [id, sn] : sensors_) {
+    if (sn.pending.valid() && sn.pending.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+      apply(takePending(sn));
+      changed.push_back(id);
     }
-    report.calibration = c;
-    report.restored = false;
-    report.state = CalibrationState::Converged;
-    report.failure.clear();
-    if (!config_.state_dir.empty()) CalibrationStore(config_.state_dir).save(c);
-  } catch (const std::exception& e) {
-    report.state = CalibrationState::Failed;
-    report.failure = e.what();
   }
+  return changed;
+}
+
+SessionOutcome CalibrationService::takePending(Sensor& sn) {
+  SessionOutcome outcome = sn.pending.get();
+  sn.worker.join();
+  return outcome;
+}
+
+void CalibrationService::apply(const SessionOutcome& outcome) {
+  SensorReport& report = reports_[outcome.sensor_id];
+  report.last_stats = outcome.stats;
+  if (!outcome.calibration) {
+    report.state = CalibrationState::Failed;
+    report.failure = outcome.failure;
+    return;
+  }
+  report.calibration = outcome.calibration;
+  report.restored = false;
+  report.state = CalibrationState::Converged;
+  report.failure = outcome.persist_error.empty() ? "" : "not persisted: " + outcome.persist_error;
 }
 
 }  // namespace imucal::daemon

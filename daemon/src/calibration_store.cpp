@@ -68,7 +68,7 @@ std::string CalibrationStore::pathFor(const std::string& sensor_id) const {
 void CalibrationStore::save(const StoredCalibration& c) const {
   nlohmann::json payload{{"sensor_id", c.sensor_id}, {"utime_s", c.utime_s}, {"names", c.names},
                          {"values", c.values},       {"sigmas", c.sigmas},   {"converged", c.converged},
-                         {"model", c.model}};
+                         {"convergence_time_s", c.convergence_time_s}, {"model", c.model}};
   const std::string body = payload.dump();
   const nlohmann::json file{{"schema_version", kSchemaVersion}, {"checksum", checksumOf(body)}, {"payload", body}};
   const std::string text = file.dump(2) + "\n";
@@ -123,7 +123,11 @@ std::optional<StoredCalibration> CalibrationStore::load(const std::string& senso
     c.sigmas = p.at("sigmas").get<std::vector<double>>();
     c.converged = p.at("converged").get<std::vector<bool>>();
     c.model = p.at("model").get<std::string>();
-    if (c.values.size() != c.names.size() || c.sigmas.size() != c.names.size() || c.converged.size() != c.names.size()) {
+    // Absent in files written before convergence times were kept: unknown, as for an unconverged one.
+    c.convergence_time_s = p.contains("convergence_time_s") ? p["convergence_time_s"].get<std::vector<double>>()
+                                                            : std::vector<double>(c.names.size(), -1.0);
+    if (c.values.size() != c.names.size() || c.sigmas.size() != c.names.size() || c.converged.size() != c.names.size() ||
+        c.convergence_time_s.size() != c.names.size()) {
       fail(path, "parameter lists differ in length");
     }
     if (c.sensor_id != sensor_id) fail(path, "holds sensor '" + c.sensor_id + "', not '" + sensor_id + "'");

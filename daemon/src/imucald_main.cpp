@@ -1,5 +1,7 @@
 // imucald: the calibration daemon. Subscribes to IMU and heading samples on LCM, finds calibration
-// sessions (still, turn, still), calibrates them and publishes the result and a status.
+// sessions (still, turn, still) or is triggered, calibrates them and publishes the result and a status.
+// SIGINT / SIGTERM stop it between messages; SIGHUP reloads the configuration file (an invalid one is
+// refused, logged and counted, and the running configuration stays).
 #include <poll.h>
 #include <signal.h>
 #include <spdlog/spdlog.h>
@@ -7,56 +9,97 @@
 #include <systemd/sd-daemon.h>
 #include <unistd.h>
 
-#include <chrono>
-
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <exception>
-#include <iostream>
+#include <optional>
 
+#include "imucal/daemon/daemon_config.hpp"
 #include "imucal/daemon/lcm_node.hpp"
 #include "imucal/io/config.hpp"
+#include "imucal/io/errors.hpp"
 
 namespace {
 
+using imucal::daemon::DaemonConfig;
+
+// Command-line values win over the configuration file, at start and on every reload.
 struct Options {
-  std::string lcm_url;
-  std::string filter_config;
-  std::string state_dir;
+  std::string config_file;
+  std::optional<std::string> calibration_config, lcm_url, state_dir;
+  std::optional<std::string> imu_channel, heading_channel, trigger_channel, calibration_channel, status_channel;
+  std::optional<double> rate;
   std::vector<std::string> restore_sensors;
-  imucal::daemon::NodeConfig node;
 };
 
-// SIGINT and SIGTERM arrive on a descriptor polled with LCM's, so shutdown happens between messages.
-int blockTerminationSignals() {
+DaemonConfig effectiveConfig(const Options& o) {
+  DaemonConfig c = o.config_file.empty() ? DaemonConfig{} : imucal::daemon::loadDaemonConfig(o.config_file);
+  if (o.calibration_config) c.service.filter = imucal::io::loadCalibrateConfig(*o.calibration_config).filter;
+  if (o.lcm_url) c.lcm_url = *o.lcm_url;
+  if (o.state_dir) c.service.state_dir = *o.state_dir;
+  if (o.imu_channel) c.node.imu_channel = *o.imu_channel;
+  if (o.heading_channel) c.node.heading_channel = *o.heading_channel;
+  if (o.trigger_channel) c.node.trigger_channel = *o.trigger_channel;
+  if (o.calibration_channel) c.node.calibration_channel = *o.calibration_channel;
+  if (o.status_channel) c.node.status_channel = *o.status_channel;
+  if (o.rate) c.node.calibration_rate_hz = *o.rate;
+  c.service.background_calibration = true;  // keep receiving while a session calibrates
+  return c;
+}
+
+// The signals arrive on a descriptor polled with LCM's, so they are handled between messages.
+int blockSignals() {
   sigset_t set;
   sigemptyset(&set);
   sigaddset(&set, SIGINT);
   sigaddset(&set, SIGTERM);
+  sigaddset(&set, SIGHUP);
   if (sigprocmask(SIG_BLOCK, &set, nullptr) != 0) throw std::runtime_error("sigprocmask failed");
   const int fd = signalfd(-1, &set, SFD_CLOEXEC);
   if (fd < 0) throw std::runtime_error("signalfd failed");
   return fd;
 }
 
+void reload(const Options& o, DaemonConfig& running, imucal::daemon::CalibrationService& service,
+            imucal::daemon::LcmNode& node) {
+  sd_notify(0, "RELOADING=1");
+  try {
+    DaemonConfig next = effectiveConfig(o);
+    if (next.lcm_url != running.lcm_url)
+      spdlog::warn("reload: lcm_url '{}' takes effect only after a restart", next.lcm_url);
+    next.lcm_url = running.lcm_url;
+    service.reconfigure(next.service);
+    node.reconfigure(next.node);
+    running = std::move(next);
+    ++node.counters().config_reloads;
+    spdlog::info("reload: {} applied", o.config_file.empty() ? "command line" : o.config_file);
+  } catch (const std::exception& e) {
+    ++node.counters().config_errors;
+    spdlog::error("reload refused, the running configuration stays: {}", e.what());
+  }
+  sd_notify(0, "READY=1");
+}
+
 int run(const Options& o) {
-  imucal::daemon::ServiceConfig config;
-  if (!o.filter_config.empty()) config.filter = imucal::io::loadCalibrateConfig(o.filter_config).filter;
-  config.state_dir = o.state_dir;
-  lcm::LCM lcm(o.lcm_url);
+  DaemonConfig config = effectiveConfig(o);
+  lcm::LCM lcm(config.lcm_url);
   if (!lcm.good()) {
-    spdlog::critical("cannot open LCM at '{}'", o.lcm_url.empty() ? "(default)" : o.lcm_url);
+    spdlog::critical("cannot open LCM at '{}'", config.lcm_url.empty() ? "(default)" : config.lcm_url);
     return 1;
   }
-  imucal::daemon::CalibrationService service(config);
-  imucal::daemon::LcmNode node(lcm, o.node, service);
-  for (const auto& id : o.restore_sensors) {
+  imucal::daemon::CalibrationService service(config.service);
+  imucal::daemon::LcmNode node(lcm, config.node, service);
+  std::vector<std::string> restore = o.restore_sensors;
+  if (config.restore) restore.insert(restore.end(), config.service.sensors.begin(), config.service.sensors.end());
+  for (const auto& id : restore) {
     if (service.restore(id)) {
       spdlog::info("sensor {}: restored the persisted calibration", id);
       node.publishCalibration(service.reports().at(id), 0);
     }
   }
-  const int sig_fd = blockTerminationSignals();
-  spdlog::info("imucald: listening on {} and {}", o.node.imu_channel, o.node.heading_channel);
+  const int sig_fd = blockSignals();
+  spdlog::info("imucald: listening on {}, {} and {}", config.node.imu_channel, config.node.heading_channel,
+               config.node.trigger_channel);
   // Under systemd (Type=notify): ready once subscribed; the watchdog is fed from the loop, so a daemon
   // stuck in a handler is restarted. Both are no-ops without NOTIFY_SOCKET.
   sd_notify(0, "READY=1");
@@ -64,26 +107,38 @@ int run(const Options& o) {
   const bool watchdog = sd_watchdog_enabled(0, &watchdog_us) > 0;
   const auto watchdog_period = std::chrono::microseconds(watchdog_us / 2);
   auto last_ping = std::chrono::steady_clock::now();
-  pollfd fds[2] = {{lcm.getFileno(), POLLIN, 0}, {sig_fd, POLLIN, 0}};
-  while (true) {
+  pollfd fds[3] = {{lcm.getFileno(), POLLIN, 0}, {sig_fd, POLLIN, 0}, {service.wakeFd(), POLLIN, 0}};
+  bool stop = false;
+  while (!stop) {
     if (watchdog && std::chrono::steady_clock::now() - last_ping >= watchdog_period) {
       sd_notify(0, "WATCHDOG=1");
       last_ping = std::chrono::steady_clock::now();
     }
-    const int n = poll(fds, 2, 200);
+    const int n = poll(fds, 3, 200);
     if (n < 0 && errno != EINTR) throw std::runtime_error("poll failed");
     if (n > 0 && (fds[1].revents & POLLIN)) {
       signalfd_siginfo info{};
       if (read(sig_fd, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
-        spdlog::info("imucald: signal {}, stopping", info.ssi_signo);
+        if (info.ssi_signo == SIGHUP) {
+          reload(o, config, service, node);
+        } else {
+          spdlog::info("imucald: signal {}, stopping", info.ssi_signo);
+          stop = true;
+        }
       }
-      break;
     }
-    if (n > 0 && (fds[0].revents & POLLIN)) lcm.handle();
+    if (!stop && n > 0 && (fds[2].revents & POLLIN)) node.collectFinished();
+    if (!stop && n > 0 && (fds[0].revents & POLLIN)) lcm.handle();
+    node.tick();
   }
   sd_notify(0, "STOPPING=1");
   close(sig_fd);
   return 0;
+}
+
+template <class T>
+void addOverride(CLI::App& app, const std::string& flag, std::optional<T>& target, const std::string& help) {
+  app.add_option_function<T>(flag, [&target](const T& v) { target = v; }, help);
 }
 
 }  // namespace
@@ -91,18 +146,25 @@ int run(const Options& o) {
 int main(int argc, char** argv) {
   CLI::App app{"imucald: IMU calibration daemon"};
   Options o;
-  app.add_option("--lcm-url", o.lcm_url, "LCM provider URL (default: LCM's own default)");
-  app.add_option("--config", o.filter_config, "Calibration config (YAML): noise, priors, model")->check(CLI::ExistingFile);
-  app.add_option("--state-dir", o.state_dir, "Directory for persisted calibrations")->check(CLI::ExistingDirectory);
+  app.add_option("--config", o.config_file, "Daemon configuration (YAML, see configs/imucald.yaml); SIGHUP re-reads it")
+      ->check(CLI::ExistingFile);
+  addOverride(app, "--calibration-config", o.calibration_config,
+              "Filter model as an `imucal calibrate` config (YAML); overrides the daemon config's");
+  addOverride(app, "--lcm-url", o.lcm_url, "LCM provider URL (default: LCM's own default)");
+  addOverride(app, "--state-dir", o.state_dir, "Directory for persisted calibrations");
+  addOverride(app, "--imu-channel", o.imu_channel, "default IMUCAL_IMU");
+  addOverride(app, "--heading-channel", o.heading_channel, "default IMUCAL_HEADING");
+  addOverride(app, "--trigger-channel", o.trigger_channel, "default IMUCAL_TRIGGER");
+  addOverride(app, "--calibration-channel", o.calibration_channel, "default IMUCAL_CALIBRATION");
+  addOverride(app, "--status-channel", o.status_channel, "default IMUCAL_STATUS");
+  addOverride(app, "--rate", o.rate, "Calibration publish rate, Hz of data time (default 1)");
   app.add_option("--restore", o.restore_sensors, "Sensor ids whose persisted calibration is published at start");
-  app.add_option("--imu-channel", o.node.imu_channel)->capture_default_str();
-  app.add_option("--heading-channel", o.node.heading_channel)->capture_default_str();
-  app.add_option("--calibration-channel", o.node.calibration_channel)->capture_default_str();
-  app.add_option("--status-channel", o.node.status_channel)->capture_default_str();
-  app.add_option("--rate", o.node.calibration_rate_hz, "Calibration publish rate, Hz of data time")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
     return run(o);
+  } catch (const imucal::io::InputError& e) {
+    spdlog::critical("imucald: configuration: {}", e.what());
+    return 2;
   } catch (const std::exception& e) {
     spdlog::critical("imucald: {}", e.what());
     return 1;

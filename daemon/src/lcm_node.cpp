@@ -12,10 +12,42 @@ constexpr double kUs = 1e-6;
 std::int64_t toUtime(double t) { return static_cast<std::int64_t>(std::llround(t * 1e6)); }
 }  // namespace
 
-LcmNode::LcmNode(lcm::LCM& lcm, NodeConfig config, CalibrationService& service)
-    : lcm_(lcm), config_(std::move(config)), service_(service) {
-  lcm_.subscribe(config_.imu_channel, &LcmNode::onImu, this);
-  lcm_.subscribe(config_.heading_channel, &LcmNode::onHeading, this);
+double LcmNode::steadySeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::int64_t LcmNode::systemUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+LcmNode::LcmNode(lcm::LCM& lcm, NodeConfig config, CalibrationService& service, Clock clock)
+    : lcm_(lcm), config_(std::move(config)), service_(service), clock_(std::move(clock)) {
+  started_wall_ = last_status_wall_ = clock_();
+  subscribe();
+}
+
+LcmNode::~LcmNode() { unsubscribe(); }
+
+void LcmNode::subscribe() {
+  imu_sub_ = lcm_.subscribe(config_.imu_channel, &LcmNode::onImu, this);
+  heading_sub_ = lcm_.subscribe(config_.heading_channel, &LcmNode::onHeading, this);
+  trigger_sub_ = lcm_.subscribe(config_.trigger_channel, &LcmNode::onTrigger, this);
+}
+
+void LcmNode::unsubscribe() {
+  for (lcm::Subscription* sub : {imu_sub_, heading_sub_, trigger_sub_})
+    if (sub != nullptr) lcm_.unsubscribe(sub);
+  imu_sub_ = heading_sub_ = trigger_sub_ = nullptr;
+}
+
+void LcmNode::reconfigure(NodeConfig config) {
+  const bool inputs_changed = config.imu_channel != config_.imu_channel ||
+                              config.heading_channel != config_.heading_channel ||
+                              config.trigger_channel != config_.trigger_channel;
+  if (inputs_changed) unsubscribe();
+  config_ = std::move(config);
+  if (inputs_changed) subscribe();
 }
 
 void LcmNode::onImu(const lcm::ReceiveBuffer*, const std::string&, const imucal::imu_sample_t* msg) {
@@ -25,28 +57,85 @@ void LcmNode::onImu(const lcm::ReceiveBuffer*, const std::string&, const imucal:
     s.accel = Vec3(msg->accel[0], msg->accel[1], msg->accel[2]);
     s.gyro = Vec3(msg->gyro[0], msg->gyro[1], msg->gyro[2]);
     const bool changed = service_.onImu(msg->sensor_id, s, msg->seq);
+    const auto report_it = service_.reports().find(msg->sensor_id);
+    if (report_it == service_.reports().end()) return;  // not a configured sensor: counted by the service
+    last_imu_wall_[msg->sensor_id] = clock_();
     if (std::isfinite(s.t) && s.t > latest_) latest_ = s.t;
-    if (first_ < 0.0) first_ = latest_;
-    ++imu_seen_[msg->sensor_id];
-    const SensorReport& report = service_.reports().at(msg->sensor_id);
+    const SensorReport& report = report_it->second;
     if (changed) {
       spdlog::info("sensor {}: state {}", msg->sensor_id, static_cast<int>(report.state));
       publishCalibration(report, toUtime(latest_));
     }
     publishDue(latest_);
   } catch (const std::exception& e) {
-    ++handler_errors_;
+    ++counters_.handler_errors;
     spdlog::error("IMU handler: {}", e.what());
   }
 }
 
 void LcmNode::onHeading(const lcm::ReceiveBuffer*, const std::string&, const imucal::heading_sample_t* msg) {
   try {
+    last_heading_wall_ = clock_();
+    if (heading_stale_logged_) spdlog::info("heading samples again on {}", config_.heading_channel);
+    heading_stale_logged_ = false;
     service_.onHeading({static_cast<double>(msg->utime) * kUs, msg->heading});
   } catch (const std::exception& e) {
-    ++handler_errors_;
+    ++counters_.handler_errors;
     spdlog::error("heading handler: {}", e.what());
   }
+}
+
+void LcmNode::onTrigger(const lcm::ReceiveBuffer*, const std::string&, const imucal::calibration_trigger_t* msg) {
+  try {
+    ++counters_.triggers;
+    const std::string who = msg->requester.empty() ? "someone" : msg->requester;
+    const std::string what = msg->sensor_id.empty() ? "every sensor" : "sensor " + msg->sensor_id;
+    if (service_.trigger(msg->sensor_id)) {
+      spdlog::info("trigger from {}: {} waits for still, turn, still", who, what);
+    } else {
+      spdlog::warn("trigger from {} for {} ignored: no such sensor", who, what);
+    }
+  } catch (const std::exception& e) {
+    ++counters_.handler_errors;
+    spdlog::error("trigger handler: {}", e.what());
+  }
+}
+
+void LcmNode::collectFinished() {
+  try {
+    for (const std::string& id : service_.collectFinished()) {
+      const SensorReport& report = service_.reports().at(id);
+      if (report.state == CalibrationState::Failed) {
+        spdlog::warn("sensor {}: session failed: {}", id, report.failure);
+      } else {
+        spdlog::info("sensor {}: state {}{}", id, static_cast<int>(report.state),
+                     report.failure.empty() ? "" : " (" + report.failure + ")");
+      }
+      publishCalibration(report, toUtime(latest_));
+    }
+  } catch (const std::exception& e) {
+    ++counters_.handler_errors;
+    spdlog::error("collecting a calibration: {}", e.what());
+  }
+}
+
+double LcmNode::age(double since) const { return since < 0.0 ? -1.0 : clock_() - since; }
+
+void LcmNode::tick() {
+  const double now = clock_();
+  const double heading_age = last_heading_wall_ < 0.0 ? now - started_wall_ : now - last_heading_wall_;
+  if (heading_age > config_.heading_timeout && !heading_stale_logged_) {
+    heading_stale_logged_ = true;
+    if (last_heading_wall_ < 0.0) {
+      spdlog::warn("no heading on {} since the start: sessions calibrate without it (gyro z stays open)",
+                   config_.heading_channel);
+    } else {
+      spdlog::warn("heading on {} stopped, none for {:.1f} s: sessions calibrate without it (gyro z stays open)",
+                   config_.heading_channel, heading_age);
+    }
+  }
+  if (config_.status_rate_hz > 0.0 && now - last_status_wall_ >= 1.0 / config_.status_rate_hz)
+    publishStatuses(latest_, systemUtime());
 }
 
 imucal::calibration_t LcmNode::toMessage(const SensorReport& r, std::int64_t utime) {
@@ -62,13 +151,14 @@ imucal::calibration_t LcmNode::toMessage(const SensorReport& r, std::int64_t uti
     return m;
   }
   const StoredCalibration& c = *r.calibration;
+  m.calibrated_utime = toUtime(c.utime_s);
   m.model = c.model;
   m.num_params = static_cast<int32_t>(c.names.size());
   m.param_names = c.names;
   m.values = c.values;
   m.sigmas = c.sigmas;
   m.converged.assign(c.converged.begin(), c.converged.end());
-  m.convergence_time_s.assign(c.names.size(), -1.0);  // not kept in the store
+  m.convergence_time_s = c.convergence_time_s;
   for (std::size_t i = 0; i < c.names.size(); ++i) {
     const std::string& n = c.names[i];
     const int axis = n.back() - 'x';
@@ -97,13 +187,30 @@ void LcmNode::publishCalibration(const SensorReport& report, std::int64_t utime)
   lcm_.publish(config_.calibration_channel, &m);
 }
 
-void LcmNode::publishStatus(const SensorReport& r, std::int64_t utime) {
+void LcmNode::publishStatuses(double data_now, std::int64_t utime) {
+  last_status_wall_ = clock_();
+  for (const auto& [id, report] : service_.reports()) publishStatus(report, data_now, utime);
+}
+
+void LcmNode::publishStatus(const SensorReport& r, double data_now, std::int64_t utime) {
   imucal::daemon_status_t m{};
   m.utime = utime;
   m.sensor_id = r.sensor_id;
-  m.uptime_s = latest_ - first_;
-  m.imu_rate_hz = m.uptime_s > 0.0 ? static_cast<double>(r.imu.accepted) / m.uptime_s : 0.0;
-  m.heading_rate_hz = m.uptime_s > 0.0 ? static_cast<double>(r.heading_accepted) / m.uptime_s : 0.0;
+  m.uptime_s = clock_() - started_wall_;
+  m.state = static_cast<int8_t>(r.state);
+  const auto imu_wall = last_imu_wall_.find(r.sensor_id);
+  m.imu_age_s = imu_wall == last_imu_wall_.end() ? -1.0 : age(imu_wall->second);
+  m.heading_age_s = age(last_heading_wall_);
+  m.heading_stale = (last_heading_wall_ < 0.0 ? clock_() - started_wall_ : m.heading_age_s) > config_.heading_timeout;
+  // Rates over the period since this sensor's last status, in data time.
+  auto [it, first_period] = period_.try_emplace(r.sensor_id, PeriodStart{data_now, 0, 0});
+  PeriodStart& p = it->second;
+  const double dt = data_now - p.data_t;
+  if (!first_period && dt > 0.0) {
+    m.imu_rate_hz = static_cast<double>(r.imu.accepted - p.imu) / dt;
+    m.heading_rate_hz = static_cast<double>(r.heading_accepted - p.heading) / dt;
+  }
+  p = PeriodStart{data_now, r.imu.accepted, r.heading_accepted};
   m.imu_accepted = static_cast<int64_t>(r.imu.accepted);
   m.heading_accepted = static_cast<int64_t>(r.heading_accepted);
   m.imu_dropped = static_cast<int64_t>(r.imu.sequence_drops);
@@ -111,13 +218,17 @@ void LcmNode::publishStatus(const SensorReport& r, std::int64_t utime) {
   m.rejected_time_backwards = static_cast<int64_t>(r.imu.time_backwards);
   m.rejected_duplicate = static_cast<int64_t>(r.imu.duplicates);
   m.rejected_out_of_range = static_cast<int64_t>(r.imu.out_of_range);
-  m.rejected_unknown_sensor = 0;
+  m.rejected_unknown_sensor = static_cast<int64_t>(service_.unknownSensorRejected());
   m.gaps = static_cast<int64_t>(r.imu.gaps);
   m.heading_rejected = static_cast<int64_t>(r.heading_rejected);
   m.heading_nis_mean = r.last_stats.heading_nis_mean;
   m.heading_nis_count = static_cast<int32_t>(r.last_stats.heading_updates);
   m.velocity_nis_mean = r.last_stats.velocity_nis_mean;
   m.velocity_nis_count = static_cast<int32_t>(r.last_stats.zero_velocity_updates);
+  m.handler_errors = static_cast<int64_t>(counters_.handler_errors);
+  m.triggers = static_cast<int64_t>(counters_.triggers);
+  m.config_reloads = static_cast<int32_t>(counters_.config_reloads);
+  m.config_errors = static_cast<int32_t>(counters_.config_errors);
   lcm_.publish(config_.status_channel, &m);
 }
 
@@ -128,7 +239,7 @@ void LcmNode::publishDue(double now_s) {
   }
   if (config_.status_rate_hz > 0.0 && now_s - last_status_ >= 1.0 / config_.status_rate_hz) {
     last_status_ = now_s;
-    for (const auto& [id, report] : service_.reports()) publishStatus(report, toUtime(now_s));
+    publishStatuses(now_s, toUtime(now_s));
   }
 }
 

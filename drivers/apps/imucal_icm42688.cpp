@@ -34,6 +34,7 @@ int run(const node::DriverOptions& o) {
     if (!r || !loop.running()) return;
     const imucal::imu_sample_t m = node::toImuSample(*r, seq++, sensor_id);
     lcm.publish(cfg.process.channel, &m);
+    if (o.print) node::printSample(m);
     if (o.max_samples > 0 && static_cast<std::uint64_t>(seq) >= o.max_samples) loop.stop();
   });
   node::verifyPeriodically(loop, cfg.process.config_check_period_s, [&] { return driver.verifyConfiguration(); });

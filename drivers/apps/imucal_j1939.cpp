@@ -18,11 +18,13 @@ struct Publisher {
   lcm::LCM& lcm;
   std::string channel, sensor_id;
   std::uint64_t max_samples;
+  bool print = false;
   std::int64_t seq = 0;
   // false once the sample limit is reached
   bool publish(const ImuReading& r) {
     const imucal::imu_sample_t m = node::toImuSample(r, seq++, sensor_id);
     lcm.publish(channel, &m);
+    if (print) node::printSample(m);
     return max_samples == 0 || static_cast<std::uint64_t>(seq) < max_samples;
   }
 };
@@ -93,7 +95,7 @@ int main(int argc, char** argv) {
     loop.stopOnSignals();
     lcm::LCM lcm(o.lcm_url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + o.lcm_url + "'");
-    Publisher out{lcm, cfg.process.channel, o.sensor_id.empty() ? cfg.process.sensor_id : o.sensor_id, o.max_samples};
+    Publisher out{lcm, cfg.process.channel, o.sensor_id.empty() ? cfg.process.sensor_id : o.sensor_id, o.max_samples, o.print};
     return candump.empty() ? live(cfg, out, loop) : replay(cfg, out, candump, speed);
   });
 }

@@ -59,6 +59,7 @@ int run(const node::DriverOptions& o) {
     m.heading_sigma = h.sigma;
     m.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
     lcm.publish(cfg.process.channel, &m);
+    if (o.print) node::printSample(m);
     heading_counters.increment("headings");
     if (o.max_samples > 0 && ++published >= o.max_samples) loop.stop();
   });

@@ -1,9 +1,11 @@
 #include "driver_process.hpp"
 
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "imucal/drivers/clock.hpp"
@@ -27,6 +29,7 @@ void addDriverOptions(CLI::App& app, DriverOptions& o, bool with_emulation) {
   app.add_option("--max-samples", o.max_samples, "Exit 0 after publishing this many samples (0 = run until stopped)")->capture_default_str();
   app.add_option("--sensor-id", o.sensor_id, "Published sensor_id (default: the config's sensor_id)");
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")->capture_default_str();
+  app.add_flag("--print", o.print, "Also print every published sample on stdout (CSV: imu,utime,seq,ax..gz,temperature_c,status,sensor_id / heading,utime,heading,sigma)");
   if (!with_emulation) return;
   app.add_flag("--emulate", o.emulate, "Use a register-level emulation of the chip fed from the simulator instead of the bus");
   app.add_option("--sim-config", o.sim_config, "With --emulate: simulator config (default: the paper scenario)")->check(CLI::ExistingFile);
@@ -36,6 +39,8 @@ void addDriverOptions(CLI::App& app, DriverOptions& o, bool with_emulation) {
 }
 
 void setupLogging(const std::string& program, const std::string& level) {
+  // stderr: stdout carries --print's samples.
+  spdlog::set_default_logger(spdlog::stderr_color_mt(program));
   spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ " + program + ": %v");
   spdlog::set_level(spdlog::level::from_str(level));
 }
@@ -64,6 +69,17 @@ imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const st
   m.status = r.status | (std::isnan(r.temperature_c) ? status::kTemperatureInvalid : 0);
   m.sensor_id = sensor_id;
   return m;
+}
+
+void printSample(const imucal::imu_sample_t& m) {
+  std::printf("imu,%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%s\n", static_cast<long long>(m.utime), static_cast<long long>(m.seq),
+              m.accel[0], m.accel[1], m.accel[2], m.gyro[0], m.gyro[1], m.gyro[2], m.temperature_c, m.status, m.sensor_id.c_str());
+  std::fflush(stdout);
+}
+
+void printSample(const imucal::heading_sample_t& m) {
+  std::printf("heading,%lld,%.9g,%.9g\n", static_cast<long long>(m.utime), m.heading, m.heading_sigma);
+  std::fflush(stdout);
 }
 
 CounterLog::CounterLog(EventLoop& loop, double period_s, std::string who, std::function<std::string()> summary)

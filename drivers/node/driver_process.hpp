@@ -22,6 +22,7 @@ struct DriverOptions {
   std::uint64_t max_samples = 0;  // 0 = forever
   std::string sensor_id;          // overrides the config's
   std::string log_level = "info";
+  bool print = false;             // also print every published sample on stdout (CSV)
   // --emulate: the device is a register-level emulation fed from the simulator.
   bool emulate = false;
   std::string sim_config;         // simulator config (YAML); empty = the paper scenario
@@ -43,6 +44,12 @@ struct EmulatedMotion {
 EmulatedMotion makeEmulatedMotion(const DriverOptions& options);
 
 imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const std::string& sensor_id);
+
+// One CSV line per published message on stdout, for checks without an LCM subscriber (e.g. inside a VM):
+//   imu,utime,seq,ax,ay,az,gx,gy,gz,temperature_c,status,sensor_id     (SI, FRD)
+//   heading,utime,heading_rad,sigma_rad
+void printSample(const imucal::imu_sample_t& m);
+void printSample(const imucal::heading_sample_t& m);
 
 // Logs the counters every `period_s` and once more when destroyed (at exit, however the loop ended).
 class CounterLog {

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <charconv>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
@@ -74,7 +75,7 @@ std::string parseLogFrame(std::string_view text, CanFrame& f) {
 
 std::string parseAsciiFrame(const std::vector<std::string_view>& t, std::size_t first, CanFrame& f) {
   // first: identifier, then "[n]", then n bytes (or "remote request")
-  if (t.size() < first + 2) return "missing the data length";
+  if (t.size() < first + 2) return "expected ID#DATA or ID [n] BYTES after the interface, got '" + std::string(t[first]) + "'";
   if (std::string err = parseId(t[first], f); !err.empty()) return err;
   const std::string_view dlc = t[first + 1];
   if (dlc.size() < 3 || dlc.front() != '[' || dlc.back() != ']' || !isHex(dlc.substr(1, dlc.size() - 2)))
@@ -124,6 +125,22 @@ CandumpLine parseCandumpLine(std::string_view line) {
   out.error = log_format ? parseLogFrame(t[2], f) : parseAsciiFrame(t, 2, f);
   if (out.error.empty()) out.frame = f;
   return out;
+}
+
+std::string formatCandumpLine(const CanFrame& f, const std::string& interface) {
+  char head[64];
+  std::snprintf(head, sizeof head, "(%lld.%06lld) ", static_cast<long long>(f.utime / 1'000'000),
+                static_cast<long long>(f.utime % 1'000'000));
+  char id[16];
+  std::snprintf(id, sizeof id, f.extended ? "%08X#" : "%03X#", static_cast<unsigned>(f.id));
+  std::string line = head + interface + " " + id;
+  if (f.remote) return line + "R";
+  for (std::size_t i = 0; i < f.length; ++i) {
+    char b[4];
+    std::snprintf(b, sizeof b, "%02X", static_cast<unsigned>(f.data[i]));
+    line += b;
+  }
+  return line;
 }
 
 CandumpLog parseCandump(const std::string& text, const std::string& name) {

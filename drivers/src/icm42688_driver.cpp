@@ -21,7 +21,8 @@ RegisterTable makeTable(const Icm42688Config& c) {
       {0, reg::ACCEL_CONFIG0, accel, static_cast<std::uint8_t>(~accel)},
       // INT1: pulsed, push-pull, active high, driven by data ready only.
       {0, reg::INT_CONFIG, INT1_DRIVE_PUSH_PULL | INT1_POLARITY_HIGH, INT1_MODE_LATCHED},
-      {0, reg::INT_CONFIG1, 0, INT_ASYNC_RESET},
+      c.odr_hz >= 4000.0 ? RegisterSetting{0, reg::INT_CONFIG1, INT_TPULSE_DURATION_8US | INT_TDEASSERT_DISABLE, INT_ASYNC_RESET}
+                         : RegisterSetting{0, reg::INT_CONFIG1, 0, INT_TPULSE_DURATION_8US | INT_TDEASSERT_DISABLE | INT_ASYNC_RESET},
       {0, reg::INT_SOURCE0, UI_DRDY_INT1_EN, static_cast<std::uint8_t>(~UI_DRDY_INT1_EN)},
       // Last: both sensors on in low-noise mode, temperature on.
       {0, reg::PWR_MGMT0, GYRO_MODE_LOW_NOISE | ACCEL_MODE_LOW_NOISE, TEMP_DIS | IDLE},

@@ -72,7 +72,8 @@ std::optional<ImuReading> J1939Imu::pair() {
   }
   const AngularRate r = rate_->rate;
   const Acceleration a = accel_->accel;
-  std::int64_t utime = std::max(rate_->utime, accel_->utime);
+  // The rate frame's own latency byte describes it: its receive time minus that latency is the sample time.
+  std::int64_t utime = rate_->utime;
   rate_.reset();
   accel_.reset();
   const Value rates[3] = {r.roll, r.pitch, r.yaw};  // about x, y, z

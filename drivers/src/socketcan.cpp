@@ -76,7 +76,10 @@ class SocketCan final : public CanSocket {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& what, int e) const {
+  // Closes the socket first: a throw from the constructor skips the destructor.
+  [[noreturn]] void fail(const std::string& what, int e) {
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
     throw std::runtime_error("CAN " + interface_ + ": " + what + ": " + std::strerror(e) +
                              (e == ENODEV ? " (is the interface up? for a test: ip link add dev vcan0 type vcan)" : ""));
   }

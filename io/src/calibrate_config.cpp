@@ -171,8 +171,9 @@ void readFilter(YamlSection s, FilterConfig& f) {
   s.finish();
 }
 
-CalibrateConfig fromYaml(const YAML::Node& root, const std::string& name) {
-  YamlSection top(root, name, "");
+}  // namespace
+
+CalibrateConfig calibrateConfigFrom(YamlSection top) {
   CalibrateConfig c;
   c.imu = readImuFormat(top.section("imu"));
   c.heading = readHeadingSection(top.section("heading"), c.filter.measurements);
@@ -187,12 +188,12 @@ CalibrateConfig fromYaml(const YAML::Node& root, const std::string& name) {
   return c;
 }
 
-}  // namespace
-
 CalibrateConfig parseCalibrateConfig(const std::string& yaml, const std::string& name) {
-  return fromYaml(parseYaml(yaml, name), name);
+  return calibrateConfigFrom(YamlSection(parseYaml(yaml, name), name, ""));
 }
 
-CalibrateConfig loadCalibrateConfig(const std::string& path) { return fromYaml(loadYamlFile(path), path); }
+CalibrateConfig loadCalibrateConfig(const std::string& path) {
+  return calibrateConfigFrom(YamlSection(loadYamlFile(path), path, ""));
+}
 
 }  // namespace imucal::io

@@ -172,6 +172,25 @@ Vec3 YamlSection::vector3(const std::string& key, const Vec3& fallback, bool all
   return v;
 }
 
+std::vector<std::string> YamlSection::texts(const std::string& key, const std::vector<std::string>& fallback) {
+  const YAML::Node value = raw(key);
+  if (!value.IsDefined()) return fallback;
+  if (value.IsNull()) return {};
+  std::vector<std::string> out;
+  const auto take = [&](const YAML::Node& item) {
+    if (!item.IsScalar() || item.Scalar().empty()) failAt(item, key, "expected a name, got " + describe(item));
+    out.push_back(item.Scalar());
+  };
+  if (value.IsScalar()) {
+    take(value);
+  } else if (value.IsSequence()) {
+    for (const auto& item : value) take(item);
+  } else {
+    failAt(value, key, "expected a list of names, got " + describe(value));
+  }
+  return out;
+}
+
 std::array<std::string, 3> YamlSection::texts3(const std::string& key, const std::array<std::string, 3>& fallback) {
   const YAML::Node value = raw(key);
   if (!value.IsDefined()) return fallback;

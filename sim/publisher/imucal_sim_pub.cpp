@@ -8,6 +8,7 @@
 #include <exception>
 #include <thread>
 
+#include "fault_injection.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/lcmtypes.hpp"
@@ -25,6 +26,10 @@ struct Options {
   std::string imu_channel = "IMUCAL_IMU";
   std::string heading_channel = "IMUCAL_HEADING";
   double start_delay = 0.5;  // s before the first message, so subscribers are up
+  std::string faults;        // bad messages to mix in (see fault_injection.hpp)
+  double heading_until = -1.0;  // s of data time after which no heading is published (< 0: never stops)
+  std::string report;        // what was published, as JSON, for the test's checker
+  double epoch_offset = 0.0;  // s added to the wall clock for data time 0
 };
 
 std::int64_t utimeOf(double epoch_s, double t) { return static_cast<std::int64_t>(std::llround((epoch_s + t) * 1e6)); }
@@ -35,14 +40,21 @@ int run(const Options& o) {
   if (!o.truth.empty()) imucal::io::writeJsonFile(o.truth, imucal::io::truthToJson(config, out, o.seed));
   lcm::LCM lcm(o.lcm_url);
   if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + o.lcm_url + "'");
+  const imucal::sim::FaultPlan plan = imucal::sim::parseFaultPlan(o.faults);
+  const std::vector<imucal::sim::Injection> injections = imucal::sim::scheduleFaults(plan, out.imu.size(), o.seed);
+  std::size_t next_injection = 0;
+  imucal::imu_sample_t previous{};
   std::this_thread::sleep_for(std::chrono::duration<double>(o.start_delay));
   const auto wall0 = std::chrono::steady_clock::now();
-  const double epoch = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  // Faster than real time, data time runs ahead of the wall clock; a second run must start after the
+  // first one's data (--epoch-offset), or a daemon sees its time go backwards.
+  const double epoch =
+      std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() + o.epoch_offset;
   std::size_t h = 0;
   for (std::size_t k = 0; k < out.imu.size(); ++k) {
     const imucal::ImuSample& s = out.imu[k];
     if (o.speed > 0.0) std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s.t / o.speed)));
-    while (h < out.heading.size() && out.heading[h].t <= s.t) {
+    while (h < out.heading.size() && out.heading[h].t <= s.t && (o.heading_until < 0.0 || out.heading[h].t <= o.heading_until)) {
       imucal::heading_sample_t hm{};
       hm.utime = utimeOf(epoch, out.heading[h].t);
       hm.heading = out.heading[h].heading;
@@ -62,9 +74,26 @@ int run(const Options& o) {
     m.temperature_c = std::nan("");
     m.status = imucal::imu_sample_t::STATUS_TEMPERATURE_INVALID;
     m.sensor_id = o.sensor_id;
+    for (; next_injection < injections.size() && injections[next_injection].before == k; ++next_injection) {
+      const imucal::imu_sample_t bad = imucal::sim::makeFault(injections[next_injection].kind, m, previous);
+      lcm.publish(o.imu_channel, &bad);
+    }
     lcm.publish(o.imu_channel, &m);
+    previous = m;
   }
-  spdlog::info("imucal-sim-pub: published {} IMU and {} heading samples", out.imu.size(), h);
+  spdlog::info("imucal-sim-pub: published {} IMU and {} heading samples and {} bad messages", out.imu.size(), h,
+               injections.size());
+  if (!o.report.empty()) {
+    imucal::io::writeJsonFile(o.report, {{"imu", out.imu.size()},
+                                         {"heading", h},
+                                         {"sensor_id", o.sensor_id},
+                                         {"injected",
+                                          {{"nan", plan.not_finite},
+                                           {"backwards", plan.time_backwards},
+                                           {"duplicate", plan.duplicate},
+                                           {"range", plan.out_of_range},
+                                           {"foreign", plan.foreign}}}});
+  }
   return 0;
 }
 
@@ -82,6 +111,10 @@ int main(int argc, char** argv) {
   app.add_option("--imu-channel", o.imu_channel)->capture_default_str();
   app.add_option("--heading-channel", o.heading_channel)->capture_default_str();
   app.add_option("--start-delay", o.start_delay, "Seconds to wait before publishing")->capture_default_str();
+  app.add_option("--faults", o.faults, "Bad IMU messages to mix in: nan=N,backwards=N,duplicate=N,range=N,foreign=N");
+  app.add_option("--heading-until", o.heading_until, "Stop publishing heading after this many seconds of data");
+  app.add_option("--epoch-offset", o.epoch_offset, "Seconds added to the wall clock for data time 0");
+  app.add_option("--report", o.report, "Write the counts of what was published here (JSON)");
   CLI11_PARSE(app, argc, argv);
   try {
     return run(o);

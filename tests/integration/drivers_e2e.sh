@@ -3,6 +3,8 @@
 #   imucal-icm42688 --emulate + imucal-lis3mdl --emulate (register-level emulations fed with the paper
 #   motion from the simulator, in real time, sharing one motion epoch) -> LCM -> imucald -> imucal-cal-check
 #   against the simulator's truth. The LIS3MDL's tilt comes from the ICM driver's samples over LCM.
+# Then the CAN path: a simulated J1939 IMU written as a candump log (imucal-j1939-simlog), replayed in real
+# time by imucal-j1939 --candump next to the emulated LIS3MDL -> a fresh imucald -> imucal-cal-check.
 # Usage: drivers_e2e.sh BUILD_DIR SOURCE_DIR
 set -euo pipefail
 if [ -z "${IMUCAL_IN_NETNS:-}" ]; then
@@ -18,9 +20,9 @@ cleanup() { for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null || true; done; rm
 trap cleanup EXIT
 mkdir -p "$tmp/state"
 
-"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state" --config "$src/configs/paper-calibrate.yaml" \
+"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state" --calibration-config "$src/configs/paper-calibrate.yaml" \
   > "$tmp/daemon.log" 2>&1 &
-pids+=("$!")
+daemon=$!; pids+=("$daemon")
 "$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 120 &
 check=$!; pids+=("$check")
 # The motion starts 3 s from now in both drivers (the subscribers and the drivers' startup come first).
@@ -40,4 +42,32 @@ cat "$tmp/icm.log" "$tmp/mag.log"
 if [ "$rc" -ne 0 ]; then echo "calibration check failed ($rc)"; cat "$tmp/daemon.log"; exit 1; fi
 grep -q "counters at exit: samples=3001 " "$tmp/icm.log" || { echo "the ICM driver did not publish 3001 samples"; exit 1; }
 grep -q "headings=2400 no_tilt=" "$tmp/mag.log" || { echo "the LIS3MDL driver did not publish 2400 headings"; exit 1; }
-echo "drivers end to end: passed"
+echo "== I2C drivers: passed"
+# The first daemon keeps publishing its calibration: stop it so only the fresh one answers below.
+kill -INT "$daemon"; wait "$daemon" 2>/dev/null || true
+
+mkdir -p "$tmp/state2"
+"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state2" --calibration-config "$src/configs/paper-calibrate.yaml" \
+  > "$tmp/daemon2.log" 2>&1 &
+pids+=("$!")
+"$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth2.json" --timeout 120 &
+check=$!; pids+=("$check")
+epoch=$(( $(date +%s) + 3 ))
+"$build/drivers/imucal-j1939-simlog" --sim-config "$src/configs/paper-sim.yaml" --seed 7 --epoch "$epoch" \
+  --latency-ms 2.5 --out "$tmp/j1939.log" --truth "$tmp/truth2.json"
+"$build/drivers/imucal-lis3mdl" --config "$src/drivers/configs/emulated-lis3mdl.yaml" --emulate \
+  --sim-config "$src/configs/paper-sim.yaml" --seed 7 --emulate-epoch "$epoch" \
+  --lcm-url "$url" --max-samples 2400 > "$tmp/mag2.log" 2>&1 &
+mag=$!; pids+=("$mag")
+# Replay at the log's own pace from the motion's start, so the frames' stamps are the wall time as for
+# the emulated magnetometer.
+sleep "$(awk -v e="$epoch" -v n="$(date +%s.%N)" 'BEGIN { d = e - n; print (d > 0 ? d : 0) }')"
+"$build/drivers/imucal-j1939" --config "$src/drivers/configs/replay-j1939.yaml" --candump "$tmp/j1939.log" --speed 1 \
+  --lcm-url "$url" > "$tmp/j1939_replay.log" 2>&1 || { echo "imucal-j1939 failed"; cat "$tmp/j1939_replay.log"; exit 1; }
+rc=0; wait "$check" || rc=$?
+wait "$mag" || { echo "imucal-lis3mdl failed"; cat "$tmp/mag2.log"; exit 1; }
+cat "$tmp/j1939_replay.log"
+if [ "$rc" -ne 0 ]; then echo "J1939 calibration check failed ($rc)"; cat "$tmp/daemon2.log"; exit 1; fi
+grep -q "published 3001 samples" "$tmp/j1939_replay.log" || { echo "the J1939 replay did not publish 3001 samples"; exit 1; }
+echo "== J1939 replay: passed"
+echo "drivers end to end: 2 passed, 0 failed"

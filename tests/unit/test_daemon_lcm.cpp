@@ -8,16 +8,12 @@
 #include "imucal/core/units.hpp"
 #include "imucal/daemon/lcm_node.hpp"
 #include "imucal/sim/simulator.hpp"
+#include "lcm_collector.hpp"
 
 namespace imucal::daemon {
 namespace {
 
-struct Collector {
-  std::vector<imucal::calibration_t> calibrations;
-  std::vector<imucal::daemon_status_t> statuses;
-  void onCalibration(const lcm::ReceiveBuffer*, const std::string&, const imucal::calibration_t* m) { calibrations.push_back(*m); }
-  void onStatus(const lcm::ReceiveBuffer*, const std::string&, const imucal::daemon_status_t* m) { statuses.push_back(*m); }
-};
+using imucal::testing::Collector;
 
 imucal::imu_sample_t toMessage(const ImuSample& s, std::int64_t seq) {
   imucal::imu_sample_t m{};

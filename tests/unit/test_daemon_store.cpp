@@ -7,6 +7,8 @@
 #include <sstream>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include "imucal/daemon/calibration_store.hpp"
 
 namespace imucal::daemon {
@@ -23,7 +25,8 @@ class DaemonStore : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
   StoredCalibration sample() const {
-    return {"imu0", 1.7e9, {"accel_bias_x", "gyro_bias_z"}, {0.44, -1.2e-3}, {1e-3, 2e-4}, {true, false}, "15-state"};
+    return {"imu0", 1.7e9, {"accel_bias_x", "gyro_bias_z"}, {0.44, -1.2e-3}, {1e-3, 2e-4}, {true, false}, {4.5, -1.0},
+            "15-state"};
   }
   std::string read(const std::string& path) const {
     std::ifstream in(path);
@@ -43,11 +46,26 @@ TEST_F(DaemonStore, RoundTripLeavesNoTemporaryFile) {
   EXPECT_EQ(loaded->values, sample().values);
   EXPECT_EQ(loaded->sigmas, sample().sigmas);
   EXPECT_EQ(loaded->converged, sample().converged);
+  EXPECT_EQ(loaded->convergence_time_s, sample().convergence_time_s);
   EXPECT_EQ(loaded->model, "15-state");
   EXPECT_DOUBLE_EQ(loaded->utime_s, 1.7e9);
   int files = 0;
   for (const auto& e : fs::directory_iterator(dir_)) files += e.path().extension() == ".tmp" ? 100 : 1;
   EXPECT_EQ(files, 1);
+}
+
+TEST_F(DaemonStore, FileWithoutConvergenceTimesLoadsThemAsUnknown) {
+  // As written before convergence times were kept: same schema, one key fewer.
+  const std::string body =
+      R"({"converged":[true,false],"model":"15-state","names":["accel_bias_x","gyro_bias_z"],)"
+      R"("sensor_id":"imu0","sigmas":[0.001,0.0002],"utime_s":1700000000.0,"values":[0.44,-0.0012]})";
+  nlohmann::json file{{"schema_version", CalibrationStore::kSchemaVersion}, {"checksum", checksumOf(body)}, {"payload", body}};
+  CalibrationStore store(dir_.string());
+  std::ofstream(store.pathFor("imu0")) << file.dump();
+  const auto loaded = store.load("imu0");
+  ASSERT_TRUE(loaded.has_value());
+  EXPECT_EQ(loaded->values, sample().values);
+  EXPECT_EQ(loaded->convergence_time_s, (std::vector<double>{-1.0, -1.0}));
 }
 
 TEST_F(DaemonStore, MissingIsAbsent) { EXPECT_FALSE(CalibrationStore(dir_.string()).load("nobody").has_value()); }

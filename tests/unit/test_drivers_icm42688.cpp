@@ -89,6 +89,8 @@ TEST(DriversIcm42688, ConfiguredScaleAndRateReachTheRegisters) {
   EXPECT_EQ(rig.chip.peek(0, reg::ACCEL_CONFIG0), (2 << 5) | 0x7);  // 4 g, 200 Hz
   EXPECT_EQ(rig.chip.peek(0, reg::PWR_MGMT0), 0x0F);
   EXPECT_EQ(rig.chip.peek(0, reg::INT_SOURCE0), icm42688::UI_DRDY_INT1_EN);
+  EXPECT_EQ(rig.chip.peek(0, reg::INT_CONFIG1), 0x00) << "INT_ASYNC_RESET (set after reset) must be cleared";
+  EXPECT_EQ(rig.chip.peek(0, reg::INT_CONFIG), 0x03);
   // Polled at 400 Hz, a 200 Hz part has new data on every other poll (after the sample that waits since
   // the start-up).
   ASSERT_TRUE(driver.read(std::nullopt));
@@ -100,6 +102,16 @@ TEST(DriversIcm42688, ConfiguredScaleAndRateReachTheRegisters) {
   EXPECT_EQ(samples, 20);
   EXPECT_EQ(empty, 20);
   EXPECT_EQ(driver.counters().get("empty_polls"), 20u);
+}
+
+TEST(DriversIcm42688, ShortInterruptPulsesAtFourKilohertzAndAbove) {
+  Icm42688Config c = Rig::config();
+  c.odr_hz = 4000.0;
+  Rig rig(c);
+  Icm42688Driver driver(rig.bus, rig.cfg, rig.clock);
+  driver.start();
+  EXPECT_EQ(rig.chip.peek(0, reg::INT_CONFIG1), 0x60);
+  EXPECT_EQ(rig.chip.peek(0, reg::GYRO_CONFIG0) & 0x0F, 0x4);
 }
 
 TEST(DriversIcm42688, SaturatesAtFullScaleAndFlagsIt) {

@@ -5,6 +5,7 @@
 
 #include "imucal/core/units.hpp"
 #include "imucal/drivers/candump.hpp"
+#include "imucal/drivers/emulation/j1939_emulation.hpp"
 #include "imucal/drivers/j1939.hpp"
 #include "imucal/drivers/j1939_config_file.hpp"
 #include "imucal/drivers/j1939_imu.hpp"
@@ -109,7 +110,7 @@ TEST(DriversJ1939, PairsRateAndAccelerationIntoOneFrdSample) {
   EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, ari, 1'000'000)));
   const auto r = imu.add(frame(kPgnAcceleration, 0xE2, accs, 1'000'900));
   ASSERT_TRUE(r);
-  EXPECT_EQ(r->utime, 1'000'900 - 2'000) << "stamped at the pair's last frame minus the reported latency";
+  EXPECT_EQ(r->utime, 1'000'000 - 2'000) << "stamped at the rate frame minus its reported latency";
   for (int i = 0; i < 3; ++i) {
     EXPECT_NEAR(r->gyro[i], w[i], 0.5 * units::deg / 128 + 1e-12) << i;
     EXPECT_NEAR(r->accel[i], f[i], 0.005 + 1e-9) << i;
@@ -247,6 +248,39 @@ TEST(DriversJ1939, ConfigErrorsNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("source_address"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parseJ1939Config("interface: vcan0\nsource_adress: 0xE2\n", "j.yaml"), io::InputError);
+}
+
+}  // namespace
+}  // namespace imucal::drivers
+
+namespace imucal::drivers {
+namespace {
+
+TEST(DriversJ1939, SimulatedBusRoundTripsThroughCandumpToTheSimulatedSamples) {
+  const sim::SimOutput out = sim::simulate(sim::paperScenario(5.0 * units::deg, true, 3), 3);
+  emulation::J1939EmulationConfig c;
+  c.epoch_utime = 1'700'000'000'000'000;
+  c.latency_s = 0.0025;
+  std::string log;
+  for (const CanFrame& f : emulation::j1939FramesFromSimulation(out, c)) log += formatCandumpLine(f, "vcan0") + "\n";
+  const CandumpLog parsed = parseCandump(log, "sim.log");
+  EXPECT_TRUE(parsed.errors.empty());
+  J1939ImuConfig dc;
+  dc.source_address = 0xE2;
+  J1939Imu imu(dc);
+  std::size_t k = 0;
+  for (const auto& f : parsed.frames) {
+    const auto r = imu.add(f.frame);
+    if (!r) continue;
+    ASSERT_LT(k, out.imu.size());
+    EXPECT_EQ(r->utime, c.epoch_utime + std::llround(out.imu[k].t * 1e6)) << "the rate frame was sent 2.5 ms after its sample and says so";
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(r->gyro[i], out.imu[k].gyro[i], 0.5 * units::deg / 128 + 1e-12);
+      EXPECT_NEAR(r->accel[i], out.imu[k].accel[i], 0.005 + 1e-9);
+    }
+    ++k;
+  }
+  EXPECT_EQ(k, out.imu.size());
 }
 
 }  // namespace

@@ -74,6 +74,10 @@ imucal::daemon_status_t makeStatus() {
   m.utime = 1'700'000'031'000'000;
   m.sensor_id = "mpu6050@i2c-1:0x68";
   m.uptime_s = 3600.5;
+  m.state = imucal::calibration_t::STATE_CALIBRATING;
+  m.imu_age_s = 0.01;
+  m.heading_age_s = 7.5;
+  m.heading_stale = 1;
   m.imu_rate_hz = 199.75;
   m.heading_rate_hz = 10.25;
   m.imu_accepted = 720'000;
@@ -90,6 +94,18 @@ imucal::daemon_status_t makeStatus() {
   m.heading_nis_count = 100;
   m.velocity_nis_mean = 2.9;
   m.velocity_nis_count = 2000;
+  m.handler_errors = 8;
+  m.triggers = 9;
+  m.config_reloads = 10;
+  m.config_errors = 11;
+  return m;
+}
+
+imucal::calibration_trigger_t makeTrigger() {
+  imucal::calibration_trigger_t m;
+  m.utime = 1'700'000'032'000'000;
+  m.sensor_id = "icm42688@i2c-1:0x68";
+  m.requester = "operator console";
   return m;
 }
 
@@ -117,6 +133,7 @@ void expectEqual(const imucal::calibration_t& a, const imucal::calibration_t& b)
   EXPECT_EQ(a.sensor_id, b.sensor_id);
   EXPECT_EQ(a.state, b.state);
   EXPECT_EQ(a.restored, b.restored);
+  EXPECT_EQ(a.calibrated_utime, b.calibrated_utime);
   EXPECT_EQ(a.model, b.model);
   EXPECT_EQ(vec(a.accel_bias), vec(b.accel_bias));
   EXPECT_EQ(vec(a.accel_bias_sigma), vec(b.accel_bias_sigma));
@@ -139,6 +156,10 @@ void expectEqual(const imucal::daemon_status_t& a, const imucal::daemon_status_t
   EXPECT_EQ(a.utime, b.utime);
   EXPECT_EQ(a.sensor_id, b.sensor_id);
   EXPECT_EQ(a.uptime_s, b.uptime_s);
+  EXPECT_EQ(a.state, b.state);
+  EXPECT_EQ(a.imu_age_s, b.imu_age_s);
+  EXPECT_EQ(a.heading_age_s, b.heading_age_s);
+  EXPECT_EQ(a.heading_stale, b.heading_stale);
   EXPECT_EQ(a.imu_rate_hz, b.imu_rate_hz);
   EXPECT_EQ(a.heading_rate_hz, b.heading_rate_hz);
   EXPECT_EQ(a.imu_accepted, b.imu_accepted);
@@ -155,6 +176,16 @@ void expectEqual(const imucal::daemon_status_t& a, const imucal::daemon_status_t
   EXPECT_EQ(a.heading_nis_count, b.heading_nis_count);
   EXPECT_EQ(a.velocity_nis_mean, b.velocity_nis_mean);
   EXPECT_EQ(a.velocity_nis_count, b.velocity_nis_count);
+  EXPECT_EQ(a.handler_errors, b.handler_errors);
+  EXPECT_EQ(a.triggers, b.triggers);
+  EXPECT_EQ(a.config_reloads, b.config_reloads);
+  EXPECT_EQ(a.config_errors, b.config_errors);
+}
+
+void expectEqual(const imucal::calibration_trigger_t& a, const imucal::calibration_trigger_t& b) {
+  EXPECT_EQ(a.utime, b.utime);
+  EXPECT_EQ(a.sensor_id, b.sensor_id);
+  EXPECT_EQ(a.requester, b.requester);
 }
 
 template <typename T>
@@ -229,6 +260,11 @@ TEST(LcmTypes, DaemonStatusRoundTrip) {
   expectEqual(roundTrip(m), m);
 }
 
+TEST(LcmTypes, CalibrationTriggerRoundTrip) {
+  const auto m = makeTrigger();
+  expectEqual(roundTrip(m), m);
+}
+
 TEST(LcmTypes, NonFiniteValuesSurvive) {
   auto m = makeImu();
   m.temperature_c = std::nan("");
@@ -260,3 +296,4 @@ TEST(LcmMemq, ImuSample) { memqRoundTrip(makeImu(), "IMUCAL_IMU"); }
 TEST(LcmMemq, HeadingSample) { memqRoundTrip(makeHeading(), "IMUCAL_HEADING"); }
 TEST(LcmMemq, Calibration) { memqRoundTrip(makeCalibration(), "IMUCAL_CALIBRATION"); }
 TEST(LcmMemq, DaemonStatus) { memqRoundTrip(makeStatus(), "IMUCAL_STATUS"); }
+TEST(LcmMemq, CalibrationTrigger) { memqRoundTrip(makeTrigger(), "IMUCAL_TRIGGER"); }

@@ -11,6 +11,7 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #endif
 #include "imucal/calibration_t.hpp"      // IWYU pragma: export
+#include "imucal/calibration_trigger_t.hpp"  // IWYU pragma: export
 #include "imucal/daemon_status_t.hpp"    // IWYU pragma: export
 #include "imucal/heading_sample_t.hpp"   // IWYU pragma: export
 #include "imucal/imu_sample_t.hpp"       // IWYU pragma: export

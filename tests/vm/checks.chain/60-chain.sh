@@ -6,7 +6,7 @@
 cfg_imu="$(config icm42688.yaml)"
 cfg_mag="$(config lis3mdl.yaml)"
 mkdir -p "$OUT/state"
-imucald --lcm-url "$LCM_URL" --state-dir "$OUT/state" --config "$IMUCAL/configs/paper-calibrate.yaml" > "$OUT/chain-imucald.txt" 2>&1 &
+imucald --lcm-url "$LCM_URL" --state-dir "$OUT/state" --calibration-config "$IMUCAL/configs/paper-calibrate.yaml" > "$OUT/chain-imucald.txt" 2>&1 &
 daemon=$!
 imucal-cal-check --lcm-url "$LCM_URL" --truth "$IMUCAL/truth.json" --timeout 150 > "$OUT/chain-cal-check.txt" 2>&1 &
 check=$!

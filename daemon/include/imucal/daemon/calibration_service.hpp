@@ -3,14 +3,18 @@
 // keep the last good calibration (persisted). The LCM node only converts messages and publishes.
 #include <deque>
 #include <functional>
+#include <future>
+#include <thread>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "imucal/core/calibrator.hpp"
 #include "imucal/daemon/calibration_store.hpp"
 #include "imucal/daemon/input_gate.hpp"
+#include "imucal/daemon/session_calibration.hpp"
 #include "imucal/daemon/session_detector.hpp"
 
 namespace imucal::daemon {
@@ -23,6 +27,15 @@ struct ServiceConfig {
   SessionDetectorConfig session;
   std::string state_dir;          // empty: do not persist
   double heading_keep = 120.0;    // s of heading samples kept for the next session
+  // Sensor ids accepted; samples of any other id are counted and dropped. Empty: every id is a sensor.
+  std::vector<std::string> sensors;
+  // Find sessions in the stream by themselves; off: only after a trigger (one session per trigger), for
+  // a vehicle whose ordinary motion can look like a calibration turn.
+  bool automatic_sessions = true;
+  // Calibrate finished sessions on a worker thread, so samples keep being received meanwhile (a 1 kHz
+  // stream overflows a socket buffer in the ~0.1 s a calibration takes; 8 kHz in 2 s). Results are then
+  // applied by collectFinished(), woken through wakeFd(). Off: at once, inside onImu (deterministic tests).
+  bool background_calibration = false;
 };
 
 // What the node publishes for one sensor.
@@ -40,24 +53,44 @@ struct SensorReport {
 class CalibrationService {
  public:
   explicit CalibrationService(ServiceConfig config);
+  ~CalibrationService();
+  CalibrationService(const CalibrationService&) = delete;
+  CalibrationService& operator=(const CalibrationService&) = delete;
   // Each returns true when the sensor's state or calibration changed (publish at once).
   bool onImu(const std::string& sensor_id, const ImuSample& sample, std::int64_t sequence);
   bool onHeading(const HeadingSample& sample);
-  // Start a session now for this sensor (manual trigger): the detector restarts and waits for still.
-  void trigger(const std::string& sensor_id);
+  // Manual trigger: the sensor's detector restarts (a half-seen session is dropped) and the next still /
+  // turn / still is calibrated, even with automatic sessions off. An empty id triggers every known or
+  // configured sensor. False when no such sensor is known or allowed.
+  bool trigger(const std::string& sensor_id);
+  // New settings for what comes next (SIGHUP): screening and detection thresholds apply from the next
+  // sample, the filter from the next session; calibrations, counters and buffered samples are kept.
+  void reconfigure(ServiceConfig config);
   // Loads the persisted calibration of a sensor (on start); true if one was found.
   bool restore(const std::string& sensor_id);
 
   const std::map<std::string, SensorReport>& reports() const { return reports_; }
   std::uint64_t headingsRejected() const { return heading_rejected_; }
+  std::uint64_t unknownSensorRejected() const { return unknown_sensor_rejected_; }
+  const ServiceConfig& config() const { return config_; }
+  // Background calibration: readable when a calibration finished; -1 otherwise.
+  int wakeFd() const { return wake_fd_; }
+  // Applies the calibrations finished in the background; the ids of the sensors whose report changed.
+  std::vector<std::string> collectFinished();
 
  private:
   struct Sensor {
     InputGate gate;
     SessionDetector detector;
+    bool armed = false;  // a trigger asked for a session (needed when sessions are not automatic)
+    std::future<SessionOutcome> pending;  // a calibration running in the background, on `worker`
+    std::thread worker;
   };
+  SessionOutcome takePending(Sensor& sensor);
   Sensor& sensor(const std::string& id);
-  void finishSession(const std::string& id, const Session& session);
+  bool allowed(const std::string& id) const;
+  bool finishSession(const std::string& id, const Session& session);  // true when applied already
+  void apply(const SessionOutcome& outcome);
 
   ServiceConfig config_;
   std::map<std::string, Sensor> sensors_;
@@ -65,6 +98,8 @@ class CalibrationService {
   std::deque<HeadingSample> headings_;
   std::uint64_t heading_rejected_ = 0;
   std::uint64_t heading_accepted_ = 0;
+  std::uint64_t unknown_sensor_rejected_ = 0;
+  int wake_fd_ = -1;
 };
 
 }  // namespace imucal::daemon

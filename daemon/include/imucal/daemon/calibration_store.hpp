@@ -15,6 +15,7 @@ struct StoredCalibration {
   std::vector<double> values;        // SI
   std::vector<double> sigmas;        // SI
   std::vector<bool> converged;
+  std::vector<double> convergence_time_s;  // s from the session's first sample; -1 where not converged
   std::string model;
 };
 

@@ -36,6 +36,7 @@ class InputGate {
   Verdict check(const ImuSample& s, std::int64_t sequence = -1);
   const InputCounters& counters() const { return counters_; }
   void reset() { has_last_ = false; }
+  void setConfig(const InputGateConfig& config) { config_ = config; }
 
  private:
   InputGateConfig config_;

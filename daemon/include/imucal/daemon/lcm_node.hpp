@@ -1,45 +1,81 @@
 #pragma once
-// The thin LCM front end of the calibration service: decodes samples, feeds the service, publishes the
-// calibration at a fixed rate of data time and at once on a state change, and the status at 1 Hz. Handlers
-// never let an exception escape into LCM's C code: failures are counted and logged.
+// The thin LCM front end of the calibration service: decodes samples and triggers, feeds the service,
+// publishes the calibration at a fixed rate of data time and at once on a state change, and the status
+// at its rate: of data time while samples flow (a replay gives the same messages), of wall time when they
+// stop (a dead sensor still shows). Handlers never let an exception escape into LCM's C code: failures are
+// counted and logged.
+#include <chrono>
+#include <functional>
 #include <map>
 #include <string>
 
 #include "imucal/daemon/calibration_service.hpp"
+#include "imucal/daemon/node_config.hpp"
 #include "imucal/lcmtypes.hpp"
 
 namespace imucal::daemon {
 
-struct NodeConfig {
-  std::string imu_channel = "IMUCAL_IMU";
-  std::string heading_channel = "IMUCAL_HEADING";
-  std::string calibration_channel = "IMUCAL_CALIBRATION";
-  std::string status_channel = "IMUCAL_STATUS";
-  double calibration_rate_hz = 1.0;  // of data time
-  double status_rate_hz = 1.0;
+// Daemon-wide counters published in every status.
+struct NodeCounters {
+  std::uint64_t handler_errors = 0;
+  std::uint64_t triggers = 0;
+  std::uint64_t config_reloads = 0;
+  std::uint64_t config_errors = 0;
 };
 
 class LcmNode {
  public:
-  LcmNode(lcm::LCM& lcm, NodeConfig config, CalibrationService& service);
+  using Clock = std::function<double()>;  // wall-clock seconds (monotonic)
+  static double steadySeconds();
+  static std::int64_t systemUtime();
+
+  LcmNode(lcm::LCM& lcm, NodeConfig config, CalibrationService& service, Clock clock = &LcmNode::steadySeconds);
+  ~LcmNode();
+  LcmNode(const LcmNode&) = delete;
+  LcmNode& operator=(const LcmNode&) = delete;
+
   // Publishes what is due at data time `now_s` (the latest sample's time).
   void publishDue(double now_s);
+  // Called from the event loop: publishes the status on wall time when no sample came for a status period.
+  void tick();
+  // Publishes the calibrations the service finished in the background (its wakeFd() was readable).
+  void collectFinished();
   void publishCalibration(const SensorReport& report, std::int64_t utime);
-  std::uint64_t handlerErrors() const { return handler_errors_; }
+  // New channels and rates (SIGHUP): resubscribes when the input channels changed.
+  void reconfigure(NodeConfig config);
+
+  NodeCounters& counters() { return counters_; }
+  std::uint64_t handlerErrors() const { return counters_.handler_errors; }
 
   static imucal::calibration_t toMessage(const SensorReport& report, std::int64_t utime);
 
  private:
+  struct PeriodStart {
+    double data_t = 0.0;
+    std::uint64_t imu = 0, heading = 0;
+  };
+  void subscribe();
+  void unsubscribe();
   void onImu(const lcm::ReceiveBuffer* rbuf, const std::string& channel, const imucal::imu_sample_t* msg);
   void onHeading(const lcm::ReceiveBuffer* rbuf, const std::string& channel, const imucal::heading_sample_t* msg);
-  void publishStatus(const SensorReport& report, std::int64_t utime);
+  void onTrigger(const lcm::ReceiveBuffer* rbuf, const std::string& channel, const imucal::calibration_trigger_t* msg);
+  void publishStatuses(double data_now, std::int64_t utime);
+  void publishStatus(const SensorReport& report, double data_now, std::int64_t utime);
+  double age(double since) const;
 
   lcm::LCM& lcm_;
   NodeConfig config_;
   CalibrationService& service_;
-  double last_calibration_ = -1e300, last_status_ = -1e300, latest_ = 0.0, first_ = -1.0;
-  std::map<std::string, std::uint64_t> imu_seen_;
-  std::uint64_t handler_errors_ = 0;
+  Clock clock_;
+  lcm::Subscription* imu_sub_ = nullptr;
+  lcm::Subscription* heading_sub_ = nullptr;
+  lcm::Subscription* trigger_sub_ = nullptr;
+  double last_calibration_ = -1e300, last_status_ = -1e300, latest_ = 0.0;
+  double started_wall_ = 0.0, last_status_wall_ = 0.0, last_heading_wall_ = -1.0;
+  bool heading_stale_logged_ = false;
+  std::map<std::string, double> last_imu_wall_;
+  std::map<std::string, PeriodStart> period_;
+  NodeCounters counters_;
 };
 
 }  // namespace imucal::daemon

@@ -35,6 +35,8 @@ class SessionDetector {
   std::optional<Session> push(const ImuSample& s);
   // Starts over (after a gap in the stream, or when triggered by hand).
   void reset();
+  // New thresholds from the next sample on; a session in progress goes on under them.
+  void setConfig(const SessionDetectorConfig& config) { config_ = config; }
   SessionPhase phase() const { return phase_; }
   double turned() const { return turned_; }
 

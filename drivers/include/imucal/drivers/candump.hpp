@@ -35,6 +35,9 @@ struct CandumpLog {
   std::vector<std::string> errors;  // "file:line: why", in file order
 };
 
+// One frame in the log format (candump -l, canplayer's input): "(seconds.micros) interface ID#DATA".
+std::string formatCandumpLine(const CanFrame& frame, const std::string& interface);
+
 // Reads the whole file; throws io::InputError only when the file cannot be read.
 CandumpLog readCandumpFile(const std::string& path);
 CandumpLog parseCandump(const std::string& text, const std::string& name);

@@ -46,7 +46,11 @@ constexpr std::uint8_t ACCEL_MODE_LOW_NOISE = 0b11u;
 constexpr std::uint8_t FS_SEL_SHIFT = 5;
 constexpr std::uint8_t FS_SEL_MASK = 0b111u << 5;
 constexpr std::uint8_t ODR_MASK = 0x0F;
-// INT_CONFIG1: the datasheet requires INT_ASYNC_RESET cleared for the INT pins to work
+// INT_CONFIG1: the datasheet requires INT_ASYNC_RESET cleared for the INT pins to work, and at ODRs of
+// 4 kHz and more an 8 us interrupt pulse (INT_TPULSE_DURATION) without de-assertion time
+// (INT_TDEASSERT_DISABLE): the 100 us defaults would merge consecutive pulses.
+constexpr std::uint8_t INT_TPULSE_DURATION_8US = 1u << 6;
+constexpr std::uint8_t INT_TDEASSERT_DISABLE = 1u << 5;
 constexpr std::uint8_t INT_ASYNC_RESET = 1u << 4;
 // INT_SOURCE0
 constexpr std::uint8_t RESET_DONE_INT1_EN = 1u << 4;

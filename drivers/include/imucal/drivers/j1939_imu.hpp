@@ -20,7 +20,7 @@ struct J1939ImuConfig {
   // J1939's y points left and z up, so FRD is (+x, -y, -z).
   io::AxisMap accel_axis_map{{0, 1, 2}, {1, -1, -1}};
   io::AxisMap gyro_axis_map{{0, 1, 2}, {1, -1, -1}};
-  bool subtract_latency = true;  // stamp = receive time of the pair's last frame - the reported latency
+  bool subtract_latency = true;  // stamp = receive time of the rate frame - its reported latency
 };
 
 class J1939Imu {

@@ -28,6 +28,9 @@ struct CalibrateConfig {
 // MagHeadingOptions.
 CalibrateConfig loadCalibrateConfig(const std::string& path);
 CalibrateConfig parseCalibrateConfig(const std::string& yaml, const std::string& name);
+// The same keys as a section of a larger file (imucald's `calibration:`), errors naming its dotted keys.
+class YamlSection;
+CalibrateConfig calibrateConfigFrom(YamlSection section);
 
 // The effective configuration as YAML in the same keys and human units as the input, every key written
 // out, so a user sees exactly what was used; loading it again gives the same configuration.

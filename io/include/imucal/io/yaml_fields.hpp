@@ -8,6 +8,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "imucal/core/types.hpp"
 
@@ -46,6 +47,8 @@ class YamlSection {
   std::string text(const std::string& key, const std::string& fallback);
   // Exactly three numbers, or (allow_scalar) one number meaning the same value on every axis.
   Vec3 vector3(const std::string& key, const Vec3& fallback, bool allow_scalar, const Range& range = Range::any());
+  // A list of non-empty names (a single name counts as a list of one).
+  std::vector<std::string> texts(const std::string& key, const std::vector<std::string>& fallback);
   std::array<std::string, 3> texts3(const std::string& key, const std::array<std::string, 3>& fallback);
   // 3x3 rows ([[..],[..],[..]]) or the six off-diagonal terms [xy, xz, yx, yz, zx, zy]; diagonal must be 0.
   Mat3 offDiagonal3(const std::string& key, const Mat3& fallback);

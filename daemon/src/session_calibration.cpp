@@ -1,0 +1,59 @@
+#include "imucal/daemon/session_calibration.hpp"
+
+#include <cmath>
+#include <exception>
+
+namespace imucal::daemon {
+
+SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<ImuSample>& imu,
+                                const std::vector<HeadingSample>& all_heading, FilterConfig filter,
+                                const std::string& state_dir) {
+  SessionOutcome out;
+  out.sensor_id = sensor_id;
+  if (imu.empty()) {
+    out.failure = "empty session";
+    return out;
+  }
+  std::vector<HeadingSample> heading;
+  const double t0 = imu.front().t, t1 = imu.back().t;
+  for (const auto& h : all_heading)
+    if (h.t >= t0 && h.t <= t1) heading.push_back(h);
+  filter.measurements.heading = filter.measurements.heading && !heading.empty();
+  CalibrationResult result;
+  try {
+    result = calibrate(imu, heading, filter);
+  } catch (const std::exception& e) {
+    out.failure = e.what();
+    return out;
+  }
+  out.stats = result.stats;
+  // Accelerometer and x/y gyro biases must converge; gyro z needs heading and may stay open.
+  for (std::size_t j = 0; j < 5; ++j) {
+    if (!result.converged[j]) {
+      out.failure = "session did not converge (" + result.names[j] + ")";
+      return out;
+    }
+  }
+  StoredCalibration c;
+  c.sensor_id = sensor_id;
+  c.utime_s = t1;
+  c.names = result.names;
+  c.values.assign(result.estimate.data(), result.estimate.data() + result.estimate.size());
+  c.sigmas.assign(result.sigma.data(), result.sigma.data() + result.sigma.size());
+  c.converged = result.converged;
+  for (Eigen::Index j = 0; j < result.convergence_time.size(); ++j)
+    c.convergence_time_s.push_back(std::isfinite(result.convergence_time(j)) ? result.convergence_time(j) : -1.0);
+  c.model = std::to_string(result.layout.size) + "-state ESKF, " + std::to_string(result.passes_run) + " passes" +
+            (filter.measurements.heading ? ", heading" : ", no heading");
+  if (!state_dir.empty()) {
+    try {
+      CalibrationStore(state_dir).save(c);
+    } catch (const std::exception& e) {
+      out.persist_error = e.what();
+    }
+  }
+  out.calibration = std::move(c);
+  return out;
+}
+
+}  // namespace imucal::daemon

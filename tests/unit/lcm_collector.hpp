@@ -1,0 +1,17 @@
+#pragma once
+// Test helper: keeps every calibration and status message the daemon's node publishes.
+#include <string>
+#include <vector>
+
+#include "imucal/lcmtypes.hpp"
+
+namespace imucal::testing {
+
+struct Collector {
+  std::vector<imucal::calibration_t> calibrations;
+  std::vector<imucal::daemon_status_t> statuses;
+  void onCalibration(const lcm::ReceiveBuffer*, const std::string&, const imucal::calibration_t* m) { calibrations.push_back(*m); }
+  void onStatus(const lcm::ReceiveBuffer*, const std::string&, const imucal::daemon_status_t* m) { statuses.push_back(*m); }
+};
+
+}  // namespace imucal::testing
