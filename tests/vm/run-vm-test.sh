@@ -47,7 +47,7 @@ copy_with_libs() {
 tools=(imucal-vm-icm42688-feeder imucal-vm-lis3mdl-feeder imucal-vm-j1939-feeder imucal-vm-i2c-readback imucal-vm-can-receive
        imucal-vm-lcm-check)
 for t in "${tools[@]}"; do copy_with_libs "$build/tests/vm/$t" "$stage/imucal/bin"; done
-# busybox's ip cannot create a vcan link; iproute2's can.
+# iproute2's ip creates the vcan link (whether busybox's ip supports "type vcan" was not tried).
 copy_with_libs "$(command -v ip)" "$stage/imucal/bin"
 
 # The drivers are required as soon as the tree has them.
