@@ -11,6 +11,8 @@ packages=(
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java
   # sd_notify readiness and watchdog for imucald under systemd.
   libsystemd-dev
+  # The real-kernel test (tests/vm): qemu boots Debian's kernel with a busybox-static initramfs.
+  qemu-system-x86 busybox-static cpio xz-utils
   # The lcm-spy check: a virtual X display, a screenshot of Spy's window and OCR to read its table.
   xvfb x11-utils imagemagick tesseract-ocr tesseract-ocr-eng
   # drivers/: GPIO data-ready lines through libgpiod 1.6 (v1 API); can-utils for candump/cansend (logs to
@@ -22,11 +24,12 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
-if ((${#missing[@]} == 0)); then
-  exit 0
+if ((${#missing[@]} > 0)); then
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  echo "installing: ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-echo "installing: ${missing[*]}"
-$SUDO apt-get update -qq
-DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# Debian's kernel .deb for the real-kernel test, unpacked into a cache, never installed (cached).
+"$(dirname "${BASH_SOURCE[0]}")/../tests/vm/fetch-kernel.sh" > /dev/null
