@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "recording_input.hpp"
 #include "imucal/core/calibrator.hpp"
+#include "imucal/core/consistency.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/errors.hpp"
@@ -28,12 +29,6 @@ struct CalibrateArgs {
   std::string history;
   std::string truth;
 };
-
-std::string defaultHistoryPath(const std::string& out) {
-  std::filesystem::path p(out);
-  p.replace_extension();
-  return p.string() + ".history.csv";
-}
 
 // Truth values (SI) by parameter name from a truth.json written by `imucal simulate`.
 nlohmann::json loadTruth(const std::string& path) {
@@ -77,23 +72,40 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
             << "), zero-velocity mean NIS " << r.stats.velocity_nis_mean << '\n';
 }
 
+// The history is for plots; more epochs than this show nothing more and cost 0.5 kB each.
+constexpr std::size_t kMaxHistoryEpochs = 20000;
+
+std::string joinLines(const std::vector<std::string>& lines) {
+  std::string out;
+  for (const auto& l : lines) out += (out.empty() ? "" : "; ") + l;
+  return out;
+}
+
 void runCalibrateCommand(const CalibrateArgs& args) {
   io::CalibrateConfig config;
   if (!args.config.empty()) config = io::loadCalibrateConfig(args.config);
   const Recording recording = loadRecording(args.input, config);
-  const CalibrationResult result = calibrate(recording.imu, recording.heading, config.filter);
+  CalibrateOptions options;
+  options.max_history_epochs = kMaxHistoryEpochs;
+  CalibrationResult result = calibrate(recording.imu, recording.heading, config.filter, options);
+  // A result whose innovations contradict its model is kept for inspection but promises nothing.
+  const std::vector<std::string> problems = inconsistencies(result);
+  if (!problems.empty()) result.converged.assign(result.converged.size(), false);
   nlohmann::json json = io::resultToJson(result);
   json["inputs"] = {{"imu", args.input.imu}, {"lcm_log", args.input.lcm_log}, {"heading", args.input.heading},
                     {"mag", args.input.mag}, {"config", args.config}};
   json["effective_config_yaml"] = io::calibrateConfigToYaml(config);
+  json["refused"] = problems;
   io::writeJsonFile(args.out, json);
-  const std::string history = args.history.empty() ? defaultHistoryPath(args.out) : args.history;
-  io::writeHistoryCsv(history, result);
+  if (!args.history.empty()) io::writeHistoryCsv(args.history, result);
 
   nlohmann::json truth;
   if (!args.truth.empty()) truth = loadTruth(args.truth);
   printSummary(result, args.truth.empty() ? nullptr : &truth);
-  std::cout << "wrote " << args.out << " and " << history << '\n';
+  std::cout << "wrote " << args.out << (args.history.empty() ? "" : " and " + args.history) << '\n';
+  if (!problems.empty())
+    throw ResultRefused("the model does not describe this recording, so no estimate or sigma can be trusted (" +
+                        joinLines(problems) + "); " + args.out + " keeps the numbers, marked refused");
 }
 
 }  // namespace
@@ -104,7 +116,7 @@ void addCalibrateCommand(CLI::App& app) {
   addRecordingOptions(*cmd, args->input);
   cmd->add_option("--config", args->config, "Calibration config (YAML): columns, units, axes, noise, model")->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "Result JSON")->required();
-  cmd->add_option("--history", args->history, "Per-epoch history CSV (default: <out>.history.csv)");
+  cmd->add_option("--history", args->history, "Also write the estimates over time as CSV (at most 20000 epochs)");
   cmd->add_option("--truth", args->truth, "truth.json from `imucal simulate`: print the error of each estimate")->check(CLI::ExistingFile);
   cmd->callback([args]() { runCalibrateCommand(*args); });
 }

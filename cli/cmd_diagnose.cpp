@@ -25,6 +25,7 @@ struct DiagnoseArgs {
   int max_steps = 4;
   double alpha = 0.01;
   double allan_min_still = 60.0;
+  std::size_t max_samples = 200000;
 };
 
 void printSteps(const Diagnosis& d) {
@@ -48,7 +49,16 @@ void runDiagnoseCommand(const DiagnoseArgs& args) {
   io::CalibrateConfig config;
   if (!args.config.empty()) config = io::loadCalibrateConfig(args.config);
   const Recording recording = loadRecording(args.input, config);
+  if (recording.imu.size() > args.max_samples)
+    throw std::invalid_argument(
+        "diagnose: " + std::to_string(recording.imu.size()) + " IMU samples, more than --max-samples " +
+        std::to_string(args.max_samples) +
+        ": the diagnosis runs the filter some hundred times over the whole recording and keeps every "
+        "innovation; diagnose an excerpt (a turn with its stills, or the longest still stretch)");
   DiagnoseOptions options;
+  options.progress = [](int round, const std::string& effect) {
+    std::cerr << "diagnose: round " << round << ": testing " << effect << '\n';
+  };
   options.max_steps = args.max_steps;
   options.family_alpha = args.alpha;
   options.allan_min_still = args.allan_min_still;
@@ -89,6 +99,9 @@ void addDiagnoseCommand(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(1e-6, 0.5));
   cmd->add_option("--allan-min-still", args->allan_min_still, "Shortest still stretch (s) for the Allan deviation")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--max-samples", args->max_samples, "Refuse longer recordings (memory and time grow with it)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   cmd->callback([args]() { runDiagnoseCommand(*args); });

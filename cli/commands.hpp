@@ -1,8 +1,16 @@
 #pragma once
 // Sub-commands of the `imucal` tool. Each registers its options on the app and runs when selected.
 #include <CLI/CLI.hpp>
+#include <stdexcept>
 
 namespace imucal::cli {
+
+// The calibration ran, but its own innovations say the model does not describe the data: the result is
+// written (marked refused, nothing converged) and the tool exits with kExitRefused.
+struct ResultRefused : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+constexpr int kExitRefused = 4;
 
 void addSimulateCommand(CLI::App& app);
 void addCalibrateCommand(CLI::App& app);

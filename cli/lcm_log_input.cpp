@@ -3,24 +3,42 @@
 #include <cstdio>
 
 #include "imucal/io/errors.hpp"
-#include "imucal/lcmtypes.hpp"
+#include "imucal/io/lcm_log_file.hpp"
+#include "imucal/lcm_decode.hpp"
 
 namespace imucal::cli {
 
+namespace {
+
+// 1e17 us is 3000 years either side of the epoch: any real clock, and small enough that the difference of
+// two such stamps cannot overflow int64.
+constexpr std::int64_t kMaxAbsUtime = 100'000'000'000'000'000;
+
+std::string eventName(const std::string& path, std::int64_t event, const std::string& channel) {
+  return path + ": event " + std::to_string(event) + " on " + io::excerpt(channel);
+}
+
+void checkUtime(std::int64_t utime, const std::string& path, std::int64_t event, const std::string& channel) {
+  if (utime > kMaxAbsUtime || utime < -kMaxAbsUtime)
+    throw io::InputError(eventName(path, event, channel) + ": utime " + std::to_string(utime) +
+                         " us is not a time stamp (more than 3000 years from the epoch)");
+}
+
+}  // namespace
+
 LcmLogInput readLcmLog(const std::string& path, const std::string& imu_channel, const std::string& heading_channel,
                        const std::string& sensor_id) {
-  lcm::LogFile log(path, "r");
-  if (!log.good()) throw io::InputError(path + ": cannot open as an LCM log");
+  io::LcmLogReader log(path);
   LcmLogInput out;
   std::vector<std::pair<std::int64_t, ImuSample>> imu;
   std::vector<std::pair<std::int64_t, double>> heading;
-  for (const lcm::LogEvent* e = log.readNextEvent(); e != nullptr; e = log.readNextEvent()) {
+  for (std::optional<io::LcmLogEvent> e = log.next(); e; e = log.next()) {
     ++out.events;
     if (e->channel == imu_channel) {
       imucal::imu_sample_t m;
-      if (m.decode(e->data, 0, e->datalen) < 0) {
-        throw io::InputError(path + ": event " + std::to_string(out.events) + " on " + e->channel + " is not an imu_sample_t");
-      }
+      if (!decodeMessage(e->data.data(), e->data.size(), m))
+        throw io::InputError(eventName(path, out.events, e->channel) + " is not an imu_sample_t");
+      checkUtime(m.utime, path, out.events, e->channel);
       if (m.sensor_id != sensor_id) {
         ++out.skipped_other_sensor;
         continue;
@@ -31,13 +49,16 @@ LcmLogInput readLcmLog(const std::string& path, const std::string& imu_channel, 
       imu.emplace_back(m.utime, s);
     } else if (e->channel == heading_channel) {
       imucal::heading_sample_t m;
-      if (m.decode(e->data, 0, e->datalen) < 0) {
-        throw io::InputError(path + ": event " + std::to_string(out.events) + " on " + e->channel + " is not a heading_sample_t");
-      }
+      if (!decodeMessage(e->data.data(), e->data.size(), m))
+        throw io::InputError(eventName(path, out.events, e->channel) + " is not a heading_sample_t");
+      checkUtime(m.utime, path, out.events, e->channel);
       heading.emplace_back(m.utime, m.heading);
     }
   }
-  if (imu.empty()) throw io::InputError(path + ": no " + imu_channel + " samples of sensor '" + sensor_id + "'");
+  out.skipped_bytes = log.skippedBytes();
+  out.truncated = log.truncated();
+  if (imu.empty())
+    throw io::InputError(path + ": no " + imu_channel + " samples of sensor '" + io::excerpt(sensor_id) + "'");
   // Times relative to the first IMU sample keep microsecond resolution in a double.
   const std::int64_t t0 = imu.front().first;
   out.start_utime_s = static_cast<double>(t0) * 1e-6;

@@ -21,6 +21,9 @@ int main(int argc, char** argv) {
   } catch (const imucal::io::InputError& e) {
     std::cerr << "imucal: input error: " << e.what() << '\n';
     return 2;
+  } catch (const imucal::cli::ResultRefused& e) {
+    std::cerr << "imucal: refused: " << e.what() << '\n';
+    return imucal::cli::kExitRefused;
   } catch (const imucal::io::OutputError& e) {
     std::cerr << "imucal: output error: " << e.what() << '\n';
     return 3;

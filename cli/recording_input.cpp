@@ -7,6 +7,7 @@
 #include "imucal/core/magnetometer_heading.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/csv_reader.hpp"
+#include "imucal/io/timing_checks.hpp"
 
 namespace imucal::cli {
 
@@ -19,6 +20,27 @@ void addRecordingOptions(CLI::App& cmd, RecordingArgs& args) {
   cmd.add_flag("--no-heading", args.no_heading, "Ignore heading input (gyro z bias then stays unconverged)");
 }
 
+namespace {
+
+std::vector<double> headingTimes(const std::vector<HeadingSample>& heading) {
+  std::vector<double> t;
+  t.reserve(heading.size());
+  for (const auto& h : heading) t.push_back(h.t);
+  return t;
+}
+
+// No overlap at all is an error (checkOverlap throws); a heading that covers little of the IMU's span is
+// legal but leaves gyro z weakly determined, which the user should hear about.
+void warnIfPartial(const std::vector<double>& times, const std::vector<ImuSample>& imu, const std::string& what) {
+  if (times.empty()) return;
+  const double covered = io::checkOverlap(times, imu, what);
+  if (covered < 0.5)
+    std::cerr << "imucal: warning: " << what << " covers only " << static_cast<int>(covered * 100.0 + 0.5)
+              << " % of the IMU's time span\n";
+}
+
+}  // namespace
+
 Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) {
   if (args.imu.empty() == args.lcm_log.empty()) throw std::invalid_argument("give either --imu or --lcm-log");
   Recording r;
@@ -26,17 +48,30 @@ Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) 
     LcmLogInput log = readLcmLog(args.lcm_log, "IMUCAL_IMU", "IMUCAL_HEADING", args.sensor_id);
     std::cout << args.lcm_log << ": " << log.imu.size() << " IMU and " << log.heading.size() << " heading samples of "
               << args.sensor_id << " (" << log.events << " events)\n";
+    if (log.skipped_bytes > 0)
+      std::cerr << "imucal: warning: " << args.lcm_log << ": " << log.skipped_bytes << " bytes between events were no event (skipped)\n";
+    if (log.truncated) std::cerr << "imucal: warning: " << args.lcm_log << ": the last event is cut short (ignored)\n";
     r.imu = std::move(log.imu);
     r.heading = std::move(log.heading);
+    io::checkImuTiming(r.imu, config.imu.max_gap, "us",
+                       [&](std::size_t i) { return args.lcm_log + ": IMU sample " + std::to_string(i + 1) + ": "; });
+    warnIfPartial(headingTimes(r.heading), r.imu, args.lcm_log + " (heading)");
   } else {
     r.imu = io::readImuCsv(args.imu, config.imu);
   }
   if (!args.heading.empty() && !args.mag.empty()) {
     throw std::invalid_argument("give either --heading or --mag, not both");
   }
-  if (!args.heading.empty()) r.heading = io::readHeadingCsv(args.heading, config.heading);
+  if (!args.heading.empty()) {
+    r.heading = io::readHeadingCsv(args.heading, config.heading);
+    warnIfPartial(headingTimes(r.heading), r.imu, args.heading);
+  }
   if (!args.mag.empty()) {
-    const MagHeading mh = headingFromMagnetometer(io::readMagCsv(args.mag, config.mag), r.imu, config.mag_heading);
+    const std::vector<MagSample> mag = io::readMagCsv(args.mag, config.mag);
+    std::vector<double> times;
+    for (const auto& m : mag) times.push_back(m.t);
+    warnIfPartial(times, r.imu, args.mag);
+    const MagHeading mh = headingFromMagnetometer(mag, r.imu, config.mag_heading);
     r.heading = mh.heading;
     config.filter.measurements.heading_sigma = mh.sigma;
     std::cout << "magnetometer: hard iron (" << mh.fit.correction.offset.x() << ", " << mh.fit.correction.offset.y()

@@ -3,7 +3,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake pkg-config iproute2 util-linux bc
+  build-essential cmake pkg-config iproute2 util-linux bc time
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   # LCM: C/C++ library (lcm.pc needs glib), lcm-gen, lcm.jar + lcm-spy, a JDK for the types jar,

@@ -1,5 +1,6 @@
 #include "imucal/core/calibrator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -40,6 +41,20 @@ void validate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample
   }
 }
 
+// Finite input can still overflow the arithmetic (an accelerometer value of 1e308): the state then turns
+// NaN, and NaN passes every "sigma small enough" test. Checked at every epoch, so the message can say where.
+void checkFinite(const Eskf& filter, const std::vector<ImuSample>& imu, std::size_t k) {
+  const NavState nav = filter.estimatedNav();
+  if (filter.covariance().diagonal().allFinite() && filter.estimatedParams().allFinite() && nav.v.allFinite() &&
+      nav.p.allFinite() && nav.q_nb.coeffs().allFinite())
+    return;
+  std::ostringstream msg;
+  msg << "calibrate: the filter's state is not finite by IMU sample " << k << " (t = " << imu[k].t
+      << " s): the input has values no IMU measures (accel " << imu[k].accel.transpose() << " m/s^2, gyro "
+      << imu[k].gyro.transpose() << " rad/s, or a time step of " << (k > 0 ? imu[k].t - imu[k - 1].t : 0.0) << " s)";
+  throw NonFiniteResult(msg.str());
+}
+
 struct PassOutput {
   VecX params;
   StateMat P;
@@ -51,7 +66,7 @@ struct PassOutput {
 
 PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
                    const std::vector<bool>& still, const FilterConfig& config, const VecX& params0, bool feedback,
-                   bool keep_innovations) {
+                   bool keep_innovations, std::size_t max_history_epochs) {
   const auto& m = config.measurements;
   Eskf filter(config);
   const StateLayout& layout = filter.layout();
@@ -66,7 +81,9 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
 
   PassOutput out;
   if (keep_innovations) filter.setInnovationSink(&out.innovations);
-  out.history.reserve(imu.size());
+  const std::size_t stride =
+      max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (imu.size() + max_history_epochs - 1) / max_history_epochs);
+  out.history.reserve(imu.size() / stride + 2);
   std::size_t h = init.first_unused_heading;
   double heading_nis_sum = 0.0, velocity_nis_sum = 0.0;
   const HeadingErrors heading_errors{m.heading_bias, m.heading_latency};
@@ -82,6 +99,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     filter.correct();
   };
   const auto record = [&](std::size_t k) {
+    checkFinite(filter, imu, k);
     EpochRecord e;
     e.t = imu[k].t;
     e.params = filter.estimatedParams();
@@ -116,7 +134,8 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     }
     filter.correct();
     while (use_heading && h < heading.size() && headingTime(h) == imu[k].t) applyHeading(h++);
-    record(k);
+    // NaN never turns finite again, so checking the recorded epochs (always the last) misses none.
+    if (k % stride == 0 || k + 1 == imu.size()) record(k);
   }
   if (out.stats.heading_updates > 0) out.stats.heading_nis_mean = heading_nis_sum / out.stats.heading_updates;
   if (out.stats.zero_velocity_updates > 0) {
@@ -151,7 +170,7 @@ CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector
     // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
     // about the dead-reckoned trajectory of the previous pass's parameters.
     const bool feedback = i == 0 || !config.open_loop_refinement;
-    pass = runPass(imu, heading, still, config, params, feedback, options.keep_innovations);
+    pass = runPass(imu, heading, still, config, params, feedback, options.keep_innovations, options.max_history_epochs);
     const VecX sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
     const double change = ((pass.params - params).cwiseQuotient(sigma)).cwiseAbs().maxCoeff();
     params = pass.params;

@@ -240,6 +240,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
         settled(t);
         continue;
       }
+      if (options.progress) options.progress(step + 1, e.id);
       candidates.push_back(e.kind == EffectKind::Deterministic ? testDeterministic(e, model, l0, eval)
                                                                : testProcessNoise(e, model, l0, eval));
     }

@@ -38,9 +38,24 @@ CalibrationService::Sensor& CalibrationService::sensor(const std::string& id) {
 bool CalibrationService::restore(const std::string& id) {
   if (config_.state_dir.empty()) return false;
   sensor(id);
-  auto stored = CalibrationStore(config_.state_dir).load(id);
-  if (!stored) return false;
   SensorReport& r = reports_[id];
+  const CalibrationStore store(config_.state_dir);
+  std::optional<StoredCalibration> stored;
+  try {
+    stored = store.load(id);
+  } catch (const std::exception& e) {
+    // An untrusted file must not stop the daemon (under Restart=on-failure that is a restart loop with no
+    // calibration at all): it starts without it, keeps the file for inspection and says so in the status.
+    r.restore_error = e.what();
+    try {
+      const auto now = std::chrono::system_clock::now().time_since_epoch();
+      r.restore_error += "; moved aside to " + store.quarantine(id, std::chrono::duration_cast<std::chrono::seconds>(now).count());
+    } catch (const std::exception& moving) {
+      r.restore_error += "; " + std::string(moving.what());
+    }
+    return false;
+  }
+  if (!stored) return false;
   r.calibration = std::move(stored);
   r.restored = true;
   r.state = CalibrationState::Converged;
@@ -48,7 +63,9 @@ bool CalibrationService::restore(const std::string& id) {
 }
 
 bool CalibrationService::allowed(const std::string& id) const {
-  return config_.sensors.empty() || std::find(config_.sensors.begin(), config_.sensors.end(), id) != config_.sensors.end();
+  if (!config_.sensors.empty()) return std::find(config_.sensors.begin(), config_.sensors.end(), id) != config_.sensors.end();
+  if (sensors_.count(id) > 0) return true;
+  return sensors_.size() < config_.max_sensors && CalibrationStore::idProblem(id).empty();
 }
 
 bool CalibrationService::trigger(const std::string& id) {

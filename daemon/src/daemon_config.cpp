@@ -1,4 +1,6 @@
 #include "imucal/daemon/daemon_config.hpp"
+#include "imucal/daemon/calibration_store.hpp"
+#include "imucal/io/errors.hpp"
 
 #include <filesystem>
 #include <set>
@@ -102,11 +104,22 @@ DaemonConfig fromYaml(const YAML::Node& root, const std::string& name, const std
   DaemonConfig c;
   c.lcm_url = top.text("lcm_url", c.lcm_url);
   c.service.state_dir = top.text("state_dir", c.service.state_dir);
-  if (!c.service.state_dir.empty() && !std::filesystem::is_directory(c.service.state_dir))
-    top.fail("state_dir", "'" + c.service.state_dir + "' is not a directory");
+  if (!c.service.state_dir.empty()) {
+    // The error_code form: a path the OS refuses (too long, no permission) is a config error, not a throw.
+    std::error_code ec;
+    const bool directory = std::filesystem::is_directory(c.service.state_dir, ec);
+    if (ec && ec != std::errc::no_such_file_or_directory)
+      top.fail("state_dir", "'" + io::excerpt(c.service.state_dir) + "': " + ec.message());
+    if (!directory) top.fail("state_dir", "'" + io::excerpt(c.service.state_dir) + "' is not a directory");
+  }
   c.service.sensors = top.texts("sensors", c.service.sensors);
   const std::set<std::string> unique(c.service.sensors.begin(), c.service.sensors.end());
   if (unique.size() != c.service.sensors.size()) top.fail("sensors", "a sensor id is listed twice");
+  for (const std::string& id : c.service.sensors)
+    if (const std::string problem = CalibrationStore::idProblem(id); !problem.empty())
+      top.fail("sensors", "'" + io::excerpt(id) + "': " + problem);
+  c.service.max_sensors = static_cast<std::size_t>(
+      top.number("max_sensors", static_cast<double>(c.service.max_sensors), Range::between(1.0, 1000.0)));
   c.restore = top.boolean("restore", c.restore);
   readChannels(top.section("channels"), c.node);
   readPublish(top.section("publish"), c.node);

@@ -95,6 +95,8 @@ int run(const Options& o) {
     if (service.restore(id)) {
       spdlog::info("sensor {}: restored the persisted calibration", id);
       node.publishCalibration(service.reports().at(id), 0);
+    } else if (const auto it = service.reports().find(id); it != service.reports().end() && !it->second.restore_error.empty()) {
+      spdlog::error("sensor {}: starting without its persisted calibration: {}", id, it->second.restore_error);
     }
   }
   const int sig_fd = blockSignals();

@@ -36,7 +36,8 @@ Verdict InputGate::check(const ImuSample& s, std::int64_t sequence) {
     }
   }
   Verdict verdict = Verdict::Accept;
-  if (has_last_ && sequence >= 0 && last_sequence_ >= 0 && sequence > last_sequence_ + 1) {
+  // Both are >= 0, so their difference cannot overflow (last_sequence_ + 1 can, at INT64_MAX).
+  if (has_last_ && sequence >= 0 && last_sequence_ >= 0 && sequence - last_sequence_ > 1) {
     counters_.sequence_drops += static_cast<std::uint64_t>(sequence - last_sequence_ - 1);
   }
   if (has_last_ && s.t - last_t_ > config_.max_gap) {

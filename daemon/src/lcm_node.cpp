@@ -5,6 +5,8 @@
 #include <cmath>
 #include <exception>
 
+#include "imucal/lcm_decode.hpp"
+
 namespace imucal::daemon {
 
 namespace {
@@ -30,9 +32,27 @@ LcmNode::LcmNode(lcm::LCM& lcm, NodeConfig config, CalibrationService& service, 
 LcmNode::~LcmNode() { unsubscribe(); }
 
 void LcmNode::subscribe() {
-  imu_sub_ = lcm_.subscribe(config_.imu_channel, &LcmNode::onImu, this);
-  heading_sub_ = lcm_.subscribe(config_.heading_channel, &LcmNode::onHeading, this);
-  trigger_sub_ = lcm_.subscribe(config_.trigger_channel, &LcmNode::onTrigger, this);
+  imu_sub_ = lcm_.subscribe(config_.imu_channel, &LcmNode::onBytes<imucal::imu_sample_t, &LcmNode::onImu>, this);
+  heading_sub_ =
+      lcm_.subscribe(config_.heading_channel, &LcmNode::onBytes<imucal::heading_sample_t, &LcmNode::onHeading>, this);
+  trigger_sub_ = lcm_.subscribe(config_.trigger_channel,
+                                &LcmNode::onBytes<imucal::calibration_trigger_t, &LcmNode::onTrigger>, this);
+}
+
+template <class Msg, void (LcmNode::*Handler)(const Msg&)>
+void LcmNode::onBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+  Msg msg;
+  if (rbuf != nullptr && decodeMessage(*rbuf, msg)) {
+    (this->*Handler)(msg);
+    return;
+  }
+  // Foreign or corrupt bytes (another program's type on our channel, a forged packet): dropped and counted;
+  // logged once per channel so a flood cannot fill the journal.
+  ++counters_.decode_errors;
+  if (decode_error_logged_.insert(channel).second) {
+    spdlog::warn("{}: a message of {} bytes is not a valid {} (dropped; counted as decode_errors, logged once)",
+                 channel, rbuf != nullptr ? rbuf->data_size : 0, Msg::getTypeName());
+  }
 }
 
 void LcmNode::unsubscribe() {
@@ -50,20 +70,20 @@ void LcmNode::reconfigure(NodeConfig config) {
   if (inputs_changed) subscribe();
 }
 
-void LcmNode::onImu(const lcm::ReceiveBuffer*, const std::string&, const imucal::imu_sample_t* msg) {
+void LcmNode::onImu(const imucal::imu_sample_t& msg) {
   try {
     ImuSample s;
-    s.t = static_cast<double>(msg->utime) * kUs;
-    s.accel = Vec3(msg->accel[0], msg->accel[1], msg->accel[2]);
-    s.gyro = Vec3(msg->gyro[0], msg->gyro[1], msg->gyro[2]);
-    const bool changed = service_.onImu(msg->sensor_id, s, msg->seq);
-    const auto report_it = service_.reports().find(msg->sensor_id);
+    s.t = static_cast<double>(msg.utime) * kUs;
+    s.accel = Vec3(msg.accel[0], msg.accel[1], msg.accel[2]);
+    s.gyro = Vec3(msg.gyro[0], msg.gyro[1], msg.gyro[2]);
+    const bool changed = service_.onImu(msg.sensor_id, s, msg.seq);
+    const auto report_it = service_.reports().find(msg.sensor_id);
     if (report_it == service_.reports().end()) return;  // not a configured sensor: counted by the service
-    last_imu_wall_[msg->sensor_id] = clock_();
+    last_imu_wall_[msg.sensor_id] = clock_();
     if (std::isfinite(s.t) && s.t > latest_) latest_ = s.t;
     const SensorReport& report = report_it->second;
     if (changed) {
-      spdlog::info("sensor {}: state {}", msg->sensor_id, static_cast<int>(report.state));
+      spdlog::info("sensor {}: state {}", msg.sensor_id, static_cast<int>(report.state));
       publishCalibration(report, toUtime(latest_));
     }
     publishDue(latest_);
@@ -73,24 +93,24 @@ void LcmNode::onImu(const lcm::ReceiveBuffer*, const std::string&, const imucal:
   }
 }
 
-void LcmNode::onHeading(const lcm::ReceiveBuffer*, const std::string&, const imucal::heading_sample_t* msg) {
+void LcmNode::onHeading(const imucal::heading_sample_t& msg) {
   try {
     last_heading_wall_ = clock_();
     if (heading_stale_logged_) spdlog::info("heading samples again on {}", config_.heading_channel);
     heading_stale_logged_ = false;
-    service_.onHeading({static_cast<double>(msg->utime) * kUs, msg->heading});
+    service_.onHeading({static_cast<double>(msg.utime) * kUs, msg.heading});
   } catch (const std::exception& e) {
     ++counters_.handler_errors;
     spdlog::error("heading handler: {}", e.what());
   }
 }
 
-void LcmNode::onTrigger(const lcm::ReceiveBuffer*, const std::string&, const imucal::calibration_trigger_t* msg) {
+void LcmNode::onTrigger(const imucal::calibration_trigger_t& msg) {
   try {
     ++counters_.triggers;
-    const std::string who = msg->requester.empty() ? "someone" : msg->requester;
-    const std::string what = msg->sensor_id.empty() ? "every sensor" : "sensor " + msg->sensor_id;
-    if (service_.trigger(msg->sensor_id)) {
+    const std::string who = msg.requester.empty() ? "someone" : msg.requester;
+    const std::string what = msg.sensor_id.empty() ? "every sensor" : "sensor " + msg.sensor_id;
+    if (service_.trigger(msg.sensor_id)) {
       spdlog::info("trigger from {}: {} waits for still, turn, still", who, what);
     } else {
       spdlog::warn("trigger from {} for {} ignored: no such sensor", who, what);
@@ -226,6 +246,8 @@ void LcmNode::publishStatus(const SensorReport& r, double data_now, std::int64_t
   m.velocity_nis_mean = r.last_stats.velocity_nis_mean;
   m.velocity_nis_count = static_cast<int32_t>(r.last_stats.zero_velocity_updates);
   m.handler_errors = static_cast<int64_t>(counters_.handler_errors);
+  m.decode_errors = static_cast<int64_t>(counters_.decode_errors);
+  m.restore_error = r.restore_error;
   m.triggers = static_cast<int64_t>(counters_.triggers);
   m.config_reloads = static_cast<int32_t>(counters_.config_reloads);
   m.config_errors = static_cast<int32_t>(counters_.config_errors);

@@ -3,7 +3,14 @@
 #include <cmath>
 #include <exception>
 
+#include "imucal/core/consistency.hpp"
+
 namespace imucal::daemon {
+
+namespace {
+// Enough for the convergence times; a session at 8 kHz would otherwise keep 0.5 kB for each sample.
+constexpr std::size_t kMaxHistoryEpochs = 5000;
+}  // namespace
 
 SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<ImuSample>& imu,
                                 const std::vector<HeadingSample>& all_heading, FilterConfig filter,
@@ -21,12 +28,18 @@ SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<
   filter.measurements.heading = filter.measurements.heading && !heading.empty();
   CalibrationResult result;
   try {
-    result = calibrate(imu, heading, filter);
+    CalibrateOptions options;
+    options.max_history_epochs = kMaxHistoryEpochs;
+    result = calibrate(imu, heading, filter, options);
   } catch (const std::exception& e) {
     out.failure = e.what();
     return out;
   }
   out.stats = result.stats;
+  if (const std::vector<std::string> problems = inconsistencies(result); !problems.empty()) {
+    out.failure = "refused: the model does not describe this session: " + problems.front();
+    return out;
+  }
   // Accelerometer and x/y gyro biases must converge; gyro z needs heading and may stay open.
   for (std::size_t j = 0; j < 5; ++j) {
     if (!result.converged[j]) {

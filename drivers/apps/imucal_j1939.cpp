@@ -2,6 +2,7 @@
 // on LCM; or, with --candump, a can-utils candump recording replayed through the same decoder.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -35,14 +36,26 @@ int replay(const J1939FileConfig& cfg, Publisher& out, const std::string& path, 
   J1939Imu imu(cfg.imu);
   const auto wall0 = std::chrono::steady_clock::now();
   const std::int64_t t0 = log.frames.empty() ? 0 : log.frames.front().frame.utime;
+  // A pause in the recording longer than this is replayed as this long: a log with a day-long hole (or a
+  // forged time stamp) must not put the replay to sleep for a day.
+  constexpr std::int64_t kMaxReplayPauseUs = 2'000'000;
+  std::int64_t skipped_us = 0, previous = t0;
   bool more = true;
   for (std::size_t i = 0; i < log.frames.size() && more; ++i) {
     const CanFrame& f = log.frames[i].frame;
-    if (speed > 0.0) std::this_thread::sleep_until(wall0 + std::chrono::microseconds(static_cast<std::int64_t>((f.utime - t0) / speed)));
+    if (f.utime - previous > kMaxReplayPauseUs) {
+      spdlog::warn("{}:{}: {:.1f} s without frames, replayed as {:.0f} s", path, log.frames[i].line,
+                   static_cast<double>(f.utime - previous) * 1e-6, kMaxReplayPauseUs * 1e-6);
+      skipped_us += f.utime - previous - kMaxReplayPauseUs;
+    }
+    previous = std::max(previous, f.utime);
+    if (speed > 0.0)
+      std::this_thread::sleep_until(
+          wall0 + std::chrono::microseconds(static_cast<std::int64_t>(static_cast<double>(f.utime - t0 - skipped_us) / speed)));
     if (const auto r = imu.add(f)) more = out.publish(*r);
   }
   spdlog::info("{}: {} lines with frames, {} bad lines; published {} samples; counters: {}", path, log.frames.size(),
-               log.errors.size(), out.seq, imu.counters().summary());
+               log.error_lines, out.seq, imu.counters().summary());
   return 0;
 }
 

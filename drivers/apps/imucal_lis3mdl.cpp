@@ -7,6 +7,7 @@
 #include "i2c_process.hpp"
 #include "imucal/drivers/emulation/lis3mdl_emulation.hpp"
 #include "imucal/drivers/lis3mdl_config_file.hpp"
+#include "imucal/lcm_decode.hpp"
 
 namespace {
 
@@ -15,9 +16,16 @@ using namespace imucal::drivers;
 struct TiltInput {
   TiltTracker tracker;
   std::string sensor_id;  // empty: any
-  void on(const lcm::ReceiveBuffer*, const std::string&, const imucal::imu_sample_t* m) {
-    if (!sensor_id.empty() && m->sensor_id != sensor_id) return;
-    tracker.add(m->utime, imucal::Vec3(m->accel[0], m->accel[1], m->accel[2]));
+  std::uint64_t decode_errors = 0;
+  // Raw bytes, decoded here: lcm-cpp's own decoding would throw inside LCM's dispatch on a forged packet.
+  void on(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+    imucal::imu_sample_t m;
+    if (rbuf == nullptr || !imucal::decodeMessage(*rbuf, m)) {
+      if (decode_errors++ == 0) spdlog::warn("{}: a message that is not an imu_sample_t (dropped; counted, logged once)", channel);
+      return;
+    }
+    if (!sensor_id.empty() && m.sensor_id != sensor_id) return;
+    tracker.add(m.utime, imucal::Vec3(m.accel[0], m.accel[1], m.accel[2]));
   }
 };
 
@@ -66,7 +74,10 @@ int run(const node::DriverOptions& o) {
   node::verifyPeriodically(loop, cfg.process.config_check_period_s, [&] { return driver.verifyConfiguration(); });
   loop.addFd(lcm.getFileno(), [&] { lcm.handle(); });
   node::CounterLog counter_log(loop, cfg.process.counters_log_period_s, "lis3mdl",
-                               [&] { return driver.counters().summary() + " " + heading_counters.summary(); });
+                               [&] {
+                                 return driver.counters().summary() + " " + heading_counters.summary() +
+                                        " imu_decode_errors=" + std::to_string(tilt.decode_errors);
+                               });
   loop.run();
   node::logStop(loop, static_cast<std::int64_t>(published), "headings");
   return 0;

@@ -3,8 +3,10 @@
 #include <cctype>
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <variant>
 
 #include "imucal/io/errors.hpp"
 #include "imucal/io/number_text.hpp"
@@ -38,20 +40,29 @@ std::uint32_t hexValue(std::string_view s) {
   return v;
 }
 
-// "(1700000000.123456)" -> us; nullopt if malformed.
-std::optional<std::int64_t> timestamp(std::string_view t) {
-  if (t.size() < 3 || t.front() != '(' || t.back() != ')') return std::nullopt;
+// Seconds since the epoch (or since the start, candump -td/-tz) up to the year 5138: far past any real log,
+// and far inside what int64 microseconds hold, so the conversion below cannot overflow.
+constexpr double kMaxTimestampS = 1e11;
+
+// "(1700000000.123456)" -> us; the reason when it is not such a time stamp.
+std::variant<std::int64_t, std::string> timestamp(std::string_view t) {
+  if (t.size() < 3 || t.front() != '(' || t.back() != ')') {
+    if (t.front() == '(') return "time stamp '" + io::excerpt(t) + "' is not (seconds)";
+    return std::string("no time stamp (record with candump -l or -ta to replay)");
+  }
   const io::ParsedNumber n = io::parseNumber(t.substr(1, t.size() - 2));
-  if (n.status != io::NumberStatus::Ok || !(n.value >= 0.0)) return std::nullopt;
+  if (n.status != io::NumberStatus::Ok || !(n.value >= 0.0)) return "time stamp '" + io::excerpt(t) + "' is not (seconds)";
+  if (n.value > kMaxTimestampS)
+    return "time stamp '" + io::excerpt(t) + "' is beyond any clock (more than 1e11 s)";
   return static_cast<std::int64_t>(n.value * 1e6 + 0.5);
 }
 
 // Identifier text: 3 hex digits = standard, 8 = extended (as candump prints them).
 std::string parseId(std::string_view text, CanFrame& f) {
-  if (!isHex(text) || (text.size() != 3 && text.size() != 8)) return "identifier '" + std::string(text) + "' is not 3 or 8 hex digits";
+  if (!isHex(text) || (text.size() != 3 && text.size() != 8)) return "identifier '" + io::excerpt(text) + "' is not 3 or 8 hex digits";
   f.id = hexValue(text);
   f.extended = text.size() == 8;
-  if (f.extended && f.id > 0x1FFFFFFF) return "identifier " + std::string(text) + " has bits above the 29-bit range (an error frame?)";
+  if (f.extended && f.id > 0x1FFFFFFF) return "identifier " + io::excerpt(text) + " has bits above the 29-bit range (an error frame?)";
   return "";
 }
 
@@ -65,8 +76,8 @@ std::string parseLogFrame(std::string_view text, CanFrame& f) {
     f.remote = true;
     return "";
   }
-  if (data.size() % 2 != 0) return "data '" + std::string(data) + "' has an odd number of hex digits (truncated?)";
-  if (!data.empty() && !isHex(data)) return "data '" + std::string(data) + "' is not hex";
+  if (data.size() % 2 != 0) return "data '" + io::excerpt(data) + "' has an odd number of hex digits (truncated?)";
+  if (!data.empty() && !isHex(data)) return "data '" + io::excerpt(data) + "' is not hex";
   if (data.size() > 16) return "data has " + std::to_string(data.size() / 2) + " bytes, a classic CAN frame at most 8";
   f.length = static_cast<std::uint8_t>(data.size() / 2);
   for (std::size_t i = 0; i < f.length; ++i) f.data[i] = static_cast<std::uint8_t>(hexValue(data.substr(2 * i, 2)));
@@ -75,11 +86,11 @@ std::string parseLogFrame(std::string_view text, CanFrame& f) {
 
 std::string parseAsciiFrame(const std::vector<std::string_view>& t, std::size_t first, CanFrame& f) {
   // first: identifier, then "[n]", then n bytes (or "remote request")
-  if (t.size() < first + 2) return "expected ID#DATA or ID [n] BYTES after the interface, got '" + std::string(t[first]) + "'";
+  if (t.size() < first + 2) return "expected ID#DATA or ID [n] BYTES after the interface, got '" + io::excerpt(t[first]) + "'";
   if (std::string err = parseId(t[first], f); !err.empty()) return err;
   const std::string_view dlc = t[first + 1];
   if (dlc.size() < 3 || dlc.front() != '[' || dlc.back() != ']' || !isHex(dlc.substr(1, dlc.size() - 2)))
-    return "data length '" + std::string(dlc) + "' is not [n]";
+    return "data length '" + io::excerpt(dlc) + "' is not [n]";
   const std::uint32_t n = hexValue(dlc.substr(1, dlc.size() - 2));
   if (n > 8) return "data length " + std::to_string(n) + " > 8 (CAN FD is not J1939)";
   if (t.size() > first + 2 && t[first + 2] == "remote") {
@@ -91,7 +102,7 @@ std::string parseAsciiFrame(const std::vector<std::string_view>& t, std::size_t 
   f.length = static_cast<std::uint8_t>(n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::string_view b = t[first + 2 + i];
-    if (b.size() != 2 || !isHex(b)) return "data byte '" + std::string(b) + "' is not two hex digits";
+    if (b.size() != 2 || !isHex(b)) return "data byte '" + io::excerpt(b) + "' is not two hex digits";
     f.data[i] = static_cast<std::uint8_t>(hexValue(b));
   }
   return "";
@@ -104,18 +115,17 @@ CandumpLine parseCandumpLine(std::string_view line) {
   const std::vector<std::string_view> t = tokens(line);
   if (t.empty() || t[0][0] == '#') return out;
   CanFrame f;
-  const std::optional<std::int64_t> ts = timestamp(t[0]);
-  if (!ts) {
-    out.error = t[0].front() == '(' ? "time stamp '" + std::string(t[0]) + "' is not (seconds)"
-                                    : "no time stamp (record with candump -l or -ta to replay)";
+  const auto ts = timestamp(t[0]);
+  if (const std::string* why = std::get_if<std::string>(&ts)) {
+    out.error = *why;
     return out;
   }
-  f.utime = *ts;
+  f.utime = std::get<std::int64_t>(ts);
   if (t.size() < 3) {
     out.error = "truncated: expected an interface and a frame after the time stamp";
     return out;
   }
-  out.interface = std::string(t[1]);
+  out.interface = io::excerpt(t[1], 32);
   // Log format: one "ID#DATA" token, optionally followed by a direction flag (T/R) of newer can-utils.
   const bool log_format = t[2].find('#') != std::string_view::npos;
   if (log_format && t.size() > 4) {
@@ -151,8 +161,13 @@ CandumpLog parseCandump(const std::string& text, const std::string& name) {
   while (std::getline(in, line)) {
     ++number;
     const CandumpLine parsed = parseCandumpLine(line);
-    if (parsed.frame) log.frames.push_back({number, *parsed.frame});
-    else if (!parsed.error.empty()) log.errors.push_back(io::location(name, static_cast<long>(number)) + parsed.error);
+    if (parsed.frame) {
+      log.frames.push_back({number, *parsed.frame});
+    } else if (!parsed.error.empty()) {
+      if (log.errors.size() < CandumpLog::kMaxErrorsKept)
+        log.errors.push_back(io::location(name, static_cast<long>(number)) + parsed.error);
+      ++log.error_lines;
+    }
   }
   return log;
 }
@@ -160,6 +175,11 @@ CandumpLog parseCandump(const std::string& text, const std::string& name) {
 CandumpLog readCandumpFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) io::throwInputError(path, 0, "cannot read the candump file");
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxCandumpBytes)
+    io::throwInputError(path, 0, std::to_string(size) + " bytes: more than the " + std::to_string(kMaxCandumpBytes >> 20) +
+                                     " MiB a replay reads into memory (split it, e.g. with split -l)");
   std::ostringstream text;
   text << in.rdbuf();
   return parseCandump(text.str(), path);

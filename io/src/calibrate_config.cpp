@@ -76,6 +76,7 @@ ImuCsvFormat readImuFormat(YamlSection s) {
   f.accel_reads_gravity = s.boolean("accel_reads_gravity", f.accel_reads_gravity);
   f.check_units = s.boolean("check_units", f.check_units);
   f.retime_uniformly = readRetime(s, f.retime_uniformly);
+  f.max_gap = s.number("max_gap_s", f.max_gap, Range::positive());
   s.finish();
   return f;
 }

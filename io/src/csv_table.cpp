@@ -52,7 +52,28 @@ std::string joinNames(const std::vector<std::string>& names) {
     if (!out.empty()) out += ", ";
     out += n;
   }
-  return out;
+  return excerpt(out, 200);
+}
+
+// No CSV row of ours comes near this; a longer "line" is a binary file or a file without line ends, and
+// reading it whole would hold all of it in memory before any check could say so.
+constexpr std::size_t kMaxLineBytes = 64 * 1024;
+
+enum class LineRead { Line, End, TooLong };
+
+LineRead readLine(std::istream& in, std::string& line) {
+  line.clear();
+  std::streambuf* buf = in.rdbuf();
+  for (;;) {
+    const int c = buf->sbumpc();
+    if (c == std::char_traits<char>::eof()) {
+      in.setstate(std::ios::eofbit);
+      return line.empty() ? LineRead::End : LineRead::Line;
+    }
+    if (c == '\n') return LineRead::Line;
+    if (line.size() == kMaxLineBytes) return LineRead::TooLong;
+    line.push_back(static_cast<char>(c));
+  }
 }
 
 double parseField(const std::string& path, long line, const std::string& column, std::string_view text) {
@@ -60,14 +81,14 @@ double parseField(const std::string& path, long line, const std::string& column,
   const std::string where = "column '" + column + "': ";
   switch (n.status) {
     case NumberStatus::Empty: throwInputError(path, line, where + "empty value");
-    case NumberStatus::NotANumber: throwInputError(path, line, where + "not a number ('" + std::string(text) + "')");
+    case NumberStatus::NotANumber: throwInputError(path, line, where + "not a number ('" + excerpt(text) + "')");
     case NumberStatus::OutOfRange:
-      throwInputError(path, line, where + "number out of range ('" + std::string(text) + "')");
+      throwInputError(path, line, where + "number out of range ('" + excerpt(text) + "')");
     case NumberStatus::Ok: break;
   }
   if (std::isnan(n.value)) throwInputError(path, line, "NaN in column '" + column + "'");
   if (std::isinf(n.value))
-    throwInputError(path, line, "infinite value in column '" + column + "' ('" + std::string(text) + "')");
+    throwInputError(path, line, "infinite value in column '" + column + "' ('" + excerpt(text) + "')");
   return n.value;
 }
 
@@ -84,8 +105,13 @@ CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string
 
   std::string raw;
   long line_no = 0;
-  while (std::getline(in, raw)) {
+  for (LineRead got = readLine(in, raw); got != LineRead::End; got = readLine(in, raw)) {
     ++line_no;
+    if (got == LineRead::TooLong)
+      throwInputError(path, line_no, "line longer than " + std::to_string(kMaxLineBytes) +
+                                         " bytes (starts '" + excerpt(raw) + "'): not a text CSV file?");
+    if (raw.find('\0') != std::string::npos)
+      throwInputError(path, line_no, "a NUL byte: binary data, not a text CSV file");
     std::string_view line(raw);
     if (line_no == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
@@ -122,6 +148,10 @@ CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string
       throwInputError(path, line_no, std::to_string(fields.size()) + " fields, but the header (line " +
                                          std::to_string(csv.header_line) + ") has " +
                                          std::to_string(csv.header.size()));
+    if (csv.lines.size() == kMaxCsvRows)
+      throwInputError(path, line_no, "more than " + std::to_string(kMaxCsvRows) +
+                                         " data rows, the most one run reads (about 130 bytes of memory each): "
+                                         "split the recording");
     for (std::size_t i = 0; i < names.size(); ++i)
       csv.values.push_back(parseField(path, line_no, names[i], fields[field_of[i]]));
     csv.lines.push_back(line_no);

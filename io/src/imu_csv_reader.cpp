@@ -1,6 +1,8 @@
 #include "imucal/io/csv_reader.hpp"
 #include "imucal/io/csv_table.hpp"
+#include "imucal/io/errors.hpp"
 #include "imucal/io/retime.hpp"
+#include "imucal/io/timing_checks.hpp"
 
 namespace imucal::io {
 
@@ -22,7 +24,11 @@ std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& f
     s.accel = format.accel_axes.apply(Vec3(csv.at(r, 1), csv.at(r, 2), csv.at(r, 3)) * accel_factor);
     s.gyro = format.gyro_axes.apply(Vec3(csv.at(r, 4), csv.at(r, 5), csv.at(r, 6)) * gyro_factor);
   }
+  checkImuTiming(samples, format.max_gap, unitName(format.time_unit),
+                 [&](std::size_t i) { return location(path, csv.lines[i]); });
+  // The unit check first: a whole file in the wrong unit deserves that name, not "a corrupt row".
   if (format.check_units) checkImuUnits(path, samples, csv.lines, format);
+  checkImuRange(path, samples, csv.lines);
   if (format.retime_uniformly) retimeSamplesUniformly(samples);
   return samples;
 }

@@ -5,6 +5,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/io/csv_reader.hpp"
 #include "imucal/io/errors.hpp"
+#include "imucal/io/number_text.hpp"
 
 namespace imucal::io {
 
@@ -59,6 +60,21 @@ void checkImuUnits(const std::string& path, const std::vector<ImuSample>& sample
     throwInputError(path, worst < lines.size() ? lines[worst] : 0,
                     "|gyro| is " + fixed2(rate) + " rad/s: the data looks like deg/s, but gyro_unit is rad/s (" +
                         "no consumer gyro measures beyond " + fixed2(kMaxGyroRadPerS) + " rad/s)");
+}
+
+void checkImuRange(const std::string& path, const std::vector<ImuSample>& samples, const std::vector<long>& lines) {
+  constexpr double kMaxAccel = 1000.0 * units::kStandardGravity;  // high-g shock sensors reach a few hundred g
+  constexpr double kMaxGyro = 1000.0;                             // rad/s, 57000 deg/s
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const double a = samples[i].accel.cwiseAbs().maxCoeff(), w = samples[i].gyro.cwiseAbs().maxCoeff();
+    const long line = i < lines.size() ? lines[i] : 0;
+    if (a > kMaxAccel)
+      throwInputError(path, line, "accelerometer value of " + formatExact(a) + " m/s^2: no accelerometer measures "
+                                  "beyond 1000 g (a corrupt row?)");
+    if (w > kMaxGyro)
+      throwInputError(path, line, "gyro value of " + formatExact(w) + " rad/s: no gyro measures beyond 1000 rad/s "
+                                  "(a corrupt row?)");
+  }
 }
 
 void checkMagUnits(const std::string& path, const std::vector<MagSample>& samples, const MagCsvFormat& format) {

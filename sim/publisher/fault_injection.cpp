@@ -31,7 +31,8 @@ FaultPlan parseFaultPlan(const std::string& text) {
     else if (kind == "duplicate") plan.duplicate = count;
     else if (kind == "range") plan.out_of_range = count;
     else if (kind == "foreign") plan.foreign = count;
-    else throw std::invalid_argument("fault '" + item + "': unknown kind (nan, backwards, duplicate, range, foreign)");
+    else if (kind == "malformed") plan.malformed = count;
+    else throw std::invalid_argument("fault '" + item + "': unknown kind (nan, backwards, duplicate, range, foreign, malformed)");
   }
   return plan;
 }
@@ -54,6 +55,7 @@ std::vector<Injection> scheduleFaults(const FaultPlan& plan, std::size_t samples
   add(plan.duplicate, FaultKind::Duplicate);
   add(plan.out_of_range, FaultKind::OutOfRange);
   add(plan.foreign, FaultKind::ForeignSensor);
+  add(plan.malformed, FaultKind::Malformed);
   std::sort(out.begin(), out.end(), [](const Injection& a, const Injection& b) { return a.before < b.before; });
   return out;
 }
@@ -78,8 +80,22 @@ imucal::imu_sample_t makeFault(FaultKind kind, const imucal::imu_sample_t& next,
     case FaultKind::ForeignSensor:
       m.sensor_id = "intruder";
       break;
+    case FaultKind::Malformed:
+      break;  // broken in its encoding (faultBytes)
   }
   return m;
+}
+
+std::vector<std::uint8_t> faultBytes(FaultKind kind, const imucal::imu_sample_t& next, const imucal::imu_sample_t& previous) {
+  const imucal::imu_sample_t m = makeFault(kind, next, previous);
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(m.getEncodedSize()));
+  m.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  if (kind == FaultKind::Malformed) {
+    // The id's length field (4 bytes before its characters and NUL, which end the message) set to 0.
+    const std::size_t at = bytes.size() - m.sensor_id.size() - 1 - 4;
+    std::fill(bytes.begin() + static_cast<std::ptrdiff_t>(at), bytes.begin() + static_cast<std::ptrdiff_t>(at + 4), 0);
+  }
+  return bytes;
 }
 
 }  // namespace imucal::sim

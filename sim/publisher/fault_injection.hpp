@@ -10,7 +10,7 @@
 
 namespace imucal::sim {
 
-enum class FaultKind { NotFinite, TimeBackwards, Duplicate, OutOfRange, ForeignSensor };
+enum class FaultKind { NotFinite, TimeBackwards, Duplicate, OutOfRange, ForeignSensor, Malformed };
 
 struct FaultPlan {
   int not_finite = 0;      // a NaN rate
@@ -18,10 +18,11 @@ struct FaultPlan {
   int duplicate = 0;       // the previous sample again, unchanged
   int out_of_range = 0;    // a specific force of 1000 g
   int foreign = 0;         // a good sample under another sensor id
-  int total() const { return not_finite + time_backwards + duplicate + out_of_range + foreign; }
+  int malformed = 0;       // bytes that are no imu_sample_t: a sensor_id length of 0 (once killed imucald)
+  int total() const { return not_finite + time_backwards + duplicate + out_of_range + foreign + malformed; }
 };
 
-// "nan=3,backwards=2,duplicate=4,range=1,foreign=5" (any subset, any order). Throws std::invalid_argument
+// "nan=3,backwards=2,duplicate=4,range=1,foreign=5,malformed=2" (any subset, any order). Throws std::invalid_argument
 // naming the item that is not `kind=count` with a known kind and a count >= 0.
 FaultPlan parseFaultPlan(const std::string& text);
 
@@ -34,6 +35,9 @@ struct Injection {
 // more faults than the stream has samples to put them before.
 std::vector<Injection> scheduleFaults(const FaultPlan& plan, std::size_t samples, std::uint64_t seed);
 
+// The bad message (for Malformed: the message whose encoding faultBytes then breaks).
 imucal::imu_sample_t makeFault(FaultKind kind, const imucal::imu_sample_t& next, const imucal::imu_sample_t& previous);
+// The bytes to publish: makeFault's message encoded, for Malformed with the sensor_id length set to 0.
+std::vector<std::uint8_t> faultBytes(FaultKind kind, const imucal::imu_sample_t& next, const imucal::imu_sample_t& previous);
 
 }  // namespace imucal::sim

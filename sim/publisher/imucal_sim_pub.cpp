@@ -75,8 +75,8 @@ int run(const Options& o) {
     m.status = imucal::imu_sample_t::STATUS_TEMPERATURE_INVALID;
     m.sensor_id = o.sensor_id;
     for (; next_injection < injections.size() && injections[next_injection].before == k; ++next_injection) {
-      const imucal::imu_sample_t bad = imucal::sim::makeFault(injections[next_injection].kind, m, previous);
-      lcm.publish(o.imu_channel, &bad);
+      const std::vector<std::uint8_t> bad = imucal::sim::faultBytes(injections[next_injection].kind, m, previous);
+      lcm.publish(o.imu_channel, bad.data(), static_cast<unsigned int>(bad.size()));
     }
     lcm.publish(o.imu_channel, &m);
     previous = m;
@@ -92,7 +92,8 @@ int run(const Options& o) {
                                            {"backwards", plan.time_backwards},
                                            {"duplicate", plan.duplicate},
                                            {"range", plan.out_of_range},
-                                           {"foreign", plan.foreign}}}});
+                                           {"foreign", plan.foreign},
+                                           {"malformed", plan.malformed}}}});
   }
   return 0;
 }
@@ -111,7 +112,7 @@ int main(int argc, char** argv) {
   app.add_option("--imu-channel", o.imu_channel)->capture_default_str();
   app.add_option("--heading-channel", o.heading_channel)->capture_default_str();
   app.add_option("--start-delay", o.start_delay, "Seconds to wait before publishing")->capture_default_str();
-  app.add_option("--faults", o.faults, "Bad IMU messages to mix in: nan=N,backwards=N,duplicate=N,range=N,foreign=N");
+  app.add_option("--faults", o.faults, "Bad IMU messages to mix in: nan=N,backwards=N,duplicate=N,range=N,foreign=N,malformed=N");
   app.add_option("--heading-until", o.heading_until, "Stop publishing heading after this many seconds of data");
   app.add_option("--epoch-offset", o.epoch_offset, "Seconds added to the wall clock for data time 0");
   app.add_option("--report", o.report, "Write the counts of what was published here (JSON)");

@@ -71,6 +71,7 @@ std::vector<std::tuple<std::string, long long, long long>> statusRows(const nloh
           {"rejected unknown sensor", inj["foreign"].get<long long>(), s.rejected_unknown_sensor},
           {"samples dropped (seq gaps)", 0, s.imu_dropped},
           {"gaps", 0, s.gaps},
+          {"undecodable messages", inj.value("malformed", 0LL), s.decode_errors},
           {"handler errors", 0, s.handler_errors}};
 }
 

@@ -41,7 +41,7 @@ echo "== bad messages and a heading that stops at 12 s: counted, rejected, calib
   --expect-report "$tmp/report1.json" &
 check=$!; pids+=("$check")
 "$build/sim/imucal-sim-pub" --config "$src/configs/paper-sim.yaml" --seed 11 --lcm-url "$url" --speed "$speed" \
-  --truth "$tmp/truth1.json" --start-delay 2 --faults nan=3,backwards=2,duplicate=4,range=1,foreign=5 \
+  --truth "$tmp/truth1.json" --start-delay 2 --faults nan=3,backwards=2,duplicate=4,range=1,foreign=5,malformed=3 \
   --heading-until 12 --report "$tmp/report1.json"
 rc=0; wait "$check" || rc=$?
 [ "$rc" -eq 0 ] || fail "calibration or counters under bad input ($rc)"

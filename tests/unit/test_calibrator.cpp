@@ -223,3 +223,28 @@ TEST(Calibrator, RejectsBadInputNamingTheSample) {
 
 }  // namespace
 }  // namespace imucal
+
+namespace imucal {
+namespace {
+
+// Finite input whose arithmetic overflows: one accelerometer value of 1e308 (the shared reproducer's row)
+// once gave every estimate and sigma NaN, all "converged". Now there is no result, and the error says
+// where the state stopped being finite.
+TEST(Calibrator, OverflowingInputThrowsInsteadOfANanResult) {
+  std::vector<ImuSample> imu = stillImu(300);
+  imu[150].accel.x() = 1e308;
+  try {
+    calibrate(imu, {}, FilterConfig{});
+    FAIL() << "a result was returned";
+  } catch (const NonFiniteResult& e) {
+    EXPECT_TRUE(contains(e.what(), "not finite by IMU sample 15")) << e.what();  // 150 or soon after
+    EXPECT_TRUE(contains(e.what(), "1e+308")) << e.what();
+  }
+  // Time stamps near 1e300: the steps vanish in rounding, so time no longer increases: refused as input.
+  std::vector<ImuSample> far = stillImu(300);
+  for (auto& s : far) s.t += 1e300;
+  EXPECT_TRUE(contains(calibrateError(far, {}), "does not increase")) << calibrateError(far, {});
+}
+
+}  // namespace
+}  // namespace imucal

@@ -8,6 +8,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/daemon/daemon_config.hpp"
 #include "imucal/io/errors.hpp"
+#include "scratch_dir.hpp"
 
 namespace imucal::daemon {
 namespace {
@@ -31,6 +32,7 @@ TEST(DaemonConfig, ShippedFileHasTheDefaults) {
   EXPECT_EQ(c.node.status_channel, d.node.status_channel);
   EXPECT_DOUBLE_EQ(c.node.heading_timeout, d.node.heading_timeout);
   EXPECT_TRUE(c.service.sensors.empty());
+  EXPECT_EQ(c.service.max_sensors, d.service.max_sensors);
   EXPECT_EQ(c.service.automatic_sessions, d.service.automatic_sessions);
   const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-4 * std::abs(b); };
   EXPECT_TRUE(near(c.service.gate.max_gyro, d.service.gate.max_gyro)) << c.service.gate.max_gyro;
@@ -99,6 +101,26 @@ TEST(DaemonConfig, ErrorsNameFileLineAndKey) {
             std::string::npos);
   EXPECT_NE(errorOf("session: {min_still_s: 5, max_lead_still_s: 4}\n").find("max_lead_still_s"), std::string::npos);
   EXPECT_NE(errorOf("channels: [a]\n").find("expected a mapping"), std::string::npos);
+  EXPECT_NE(errorOf("sensors: ['']\n").find("imucald.yaml:1: sensors: expected a name"), std::string::npos)
+      << errorOf("sensors: ['']\n");
+  EXPECT_NE(errorOf("sensors: ['" + std::string(100, '.') + "']\n").find("too long for a state file name"), std::string::npos)
+      << errorOf("sensors: ['" + std::string(100, '.') + "']\n");
+  EXPECT_NE(errorOf("max_sensors: 0\n").find("max_sensors"), std::string::npos);
+}
+
+TEST(DaemonConfig, StateDirTheSystemRefusesIsAConfigErrorNamingTheKey) {
+  // The shared reproducer: a 5000-character state_dir (ENAMETOOLONG) once escaped the loader as a
+  // std::filesystem::filesystem_error, exit 1 without file or line.
+  const std::string file = imucal::testing::hostile("imucald_long_state_dir.yaml");
+  try {
+    loadDaemonConfig(file);
+    FAIL() << "accepted";
+  } catch (const io::InputError& e) {
+    const std::string what = e.what();
+    EXPECT_EQ(what.rfind(file + ":1: state_dir: '", 0), 0u) << what.substr(0, 300);
+    EXPECT_NE(what.find("File name too long"), std::string::npos) << what.substr(0, 300);
+    EXPECT_LT(what.size(), 400u) << "the 5000 characters are quoted whole";
+  }
 }
 
 }  // namespace

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <unistd.h>
 
 #include "imucal/core/units.hpp"
 #include "imucal/daemon/calibration_service.hpp"
 #include "imucal/sim/simulator.hpp"
+#include "scratch_dir.hpp"
 
 namespace imucal::daemon {
 namespace {
@@ -111,6 +113,60 @@ TEST_F(DaemonService, NoSessionWhenTheImuStopsMidTurn) {
   }
   EXPECT_EQ(service.reports().at("imu0").imu.gaps, 1u);
   EXPECT_FALSE(service.reports().at("imu0").calibration.has_value());
+}
+
+}  // namespace
+}  // namespace imucal::daemon
+
+namespace imucal::daemon {
+namespace {
+
+// A state file the daemon cannot trust once stopped it at start (under Restart=on-failure: a restart loop
+// without any calibration). Now the sensor starts without it, the reason names the file, and the file is
+// kept beside under a new name; a session calibrated afterwards is saved in the freed place.
+TEST_F(DaemonService, CorruptStateFileIsMovedAsideAndReported) {
+  const std::string path = CalibrationStore(dir_.string()).pathFor("imu0");
+  const std::string bytes = imucal::testing::readFile(imucal::testing::hostile("state_file_checksum_null.json"));
+  std::ofstream(path, std::ios::binary) << bytes;
+  CalibrationService service(config());
+  EXPECT_FALSE(service.restore("imu0"));
+  const SensorReport& r = service.reports().at("imu0");
+  EXPECT_EQ(r.state, CalibrationState::Waiting);
+  EXPECT_FALSE(r.calibration.has_value());
+  EXPECT_EQ(r.restore_error.rfind(path + ": no payload or checksum; moved aside to " + path + ".corrupt-", 0), 0u)
+      << r.restore_error;
+  EXPECT_FALSE(fs::exists(path));
+  int kept = 0;
+  for (const auto& e : fs::directory_iterator(dir_))
+    if (e.path().string().rfind(path + ".corrupt-", 0) == 0 && imucal::testing::readFile(e.path().string()) == bytes) ++kept;
+  EXPECT_EQ(kept, 1);
+
+  sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 3);
+  sc.motion.segments.back().duration = 12.0;  // a complete trailing still
+  stream(service, sim::simulate(sc, 3), "imu0", false);
+  EXPECT_EQ(service.reports().at("imu0").state, CalibrationState::Converged);
+  EXPECT_TRUE(CalibrationStore(dir_.string()).load("imu0").has_value());
+}
+
+TEST_F(DaemonService, WithoutASensorListAtMostMaxSensorsIdsAreKept) {
+  ServiceConfig c = config();
+  c.max_sensors = 3;
+  CalibrationService service(c);
+  ImuSample s;
+  s.accel = Vec3(0, 0, -9.81);
+  for (int i = 0; i < 1000; ++i) {
+    s.t = 0.01 * i;
+    service.onImu("forged" + std::to_string(i), s, -1);
+  }
+  EXPECT_EQ(service.reports().size(), 3u);
+  EXPECT_EQ(service.unknownSensorRejected(), 997u);
+  EXPECT_EQ(service.reports().count("forged0"), 1u);
+  // An id that cannot have a state file is never a sensor, also when there is room.
+  CalibrationService roomy(config());
+  roomy.onImu("", s, -1);
+  roomy.onImu(std::string("imu\xff"), s, -1);
+  EXPECT_EQ(roomy.unknownSensorRejected(), 2u);
+  EXPECT_TRUE(roomy.reports().empty());
 }
 
 }  // namespace

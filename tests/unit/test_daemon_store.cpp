@@ -4,12 +4,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
 
 #include "imucal/daemon/calibration_store.hpp"
+#include "scratch_dir.hpp"
 
 namespace imucal::daemon {
 namespace {
@@ -116,7 +118,93 @@ TEST_F(DaemonStore, OtherSchemaVersionIsRefused) {
 
 TEST_F(DaemonStore, SensorIdsBecomeSafeFileNames) {
   CalibrationStore store(dir_.string());
-  EXPECT_EQ(fs::path(store.pathFor("../etc/passwd")).filename().string(), "calibration-___etc_passwd.json");
+  EXPECT_EQ(fs::path(store.pathFor("../etc/passwd")).filename().string(), "calibration-%2E%2E%2Fetc%2Fpasswd.json");
+  EXPECT_EQ(fs::path(store.pathFor("../etc/passwd")).parent_path(), dir_);
+  EXPECT_EQ(fs::path(store.pathFor("mpu6050@i2c-1:0x68")).filename().string(), "calibration-mpu6050%40i2c-1%3A0x68.json");
+}
+
+TEST_F(DaemonStore, DistinctIdsNeverShareAFile) {
+  // "imu.0" and "imu_0" once both became calibration-imu_0.json and overwrote each other.
+  CalibrationStore store(dir_.string());
+  const std::vector<std::string> ids{"imu.0", "imu_0", "imu%2E0", "imu 0", "imu/0", "IMU_0", "imu\u00e9"};
+  std::set<std::string> paths;
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    paths.insert(store.pathFor(ids[i]));
+    StoredCalibration c = sample();
+    c.sensor_id = ids[i];
+    c.values[0] = static_cast<double>(i);
+    store.save(c);
+  }
+  EXPECT_EQ(paths.size(), ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    const auto loaded = store.load(ids[i]);
+    ASSERT_TRUE(loaded.has_value()) << ids[i];
+    EXPECT_EQ(loaded->values[0], static_cast<double>(i)) << ids[i];
+  }
+}
+
+TEST_F(DaemonStore, IdsWithoutAFileNameAreRefused) {
+  CalibrationStore store(dir_.string());
+  EXPECT_THROW(store.pathFor(""), std::invalid_argument);
+  EXPECT_THROW(store.pathFor(std::string(100, '.')), std::invalid_argument);  // 300 bytes spelled %2E
+  EXPECT_THROW(store.pathFor(std::string("imu\xff")), std::invalid_argument);  // the file's JSON holds UTF-8 only
+  EXPECT_NO_THROW(store.pathFor(std::string(150, 'a')));
+}
+
+// Each of the shared reproducers (and a directory in the file's place) is refused with the file's path in
+// the message; moving it aside keeps its bytes under a new name and leaves the place free.
+TEST_F(DaemonStore, CorruptFilesAreRefusedNamingTheFileAndMovedAside) {
+  CalibrationStore store(dir_.string());
+  const std::string path = store.pathFor("imu0");
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"state_file_1e999.json", "out_of_range"},
+      {"state_file_checksum_null.json", "no payload or checksum"},
+      {"state_file_truncated.json", "not a valid state file"},
+      {"", "is not a regular file"}};
+  std::int64_t when = 1'700'000'000;
+  for (const auto& [file, why] : cases) {
+    std::string original;
+    if (file.empty()) {
+      fs::create_directory(path);
+    } else {
+      original = imucal::testing::readFile(imucal::testing::hostile(file));
+      std::ofstream(path, std::ios::binary) << original;
+    }
+    try {
+      store.load("imu0");
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(path + ": ", 0), 0u) << what;
+      EXPECT_NE(what.find(why), std::string::npos) << what;
+    }
+    const std::string aside = store.quarantine("imu0", when);
+    EXPECT_EQ(aside, path + ".corrupt-" + std::to_string(when));
+    EXPECT_FALSE(fs::exists(path));
+    if (!file.empty()) {
+      EXPECT_EQ(imucal::testing::readFile(aside), original);
+    }
+    EXPECT_FALSE(store.load("imu0").has_value());
+    ++when;
+  }
+}
+
+TEST_F(DaemonStore, NonFiniteNumbersAndHugeFilesAreRefused) {
+  CalibrationStore store(dir_.string());
+  // A checksum-valid file whose payload holds a NaN spelled as JSON cannot exist (JSON has no NaN), but
+  // 1e999 inside the payload overflows to infinity in some parsers: refused either way.
+  const std::string body = R"({"converged":[true],"model":"m","names":["accel_bias_x"],"sensor_id":"imu0",)"
+                           R"("sigmas":[1e999],"utime_s":1.0,"values":[0.1]})";
+  const nlohmann::json file{{"schema_version", CalibrationStore::kSchemaVersion}, {"checksum", checksumOf(body)}, {"payload", body}};
+  std::ofstream(store.pathFor("imu0")) << file.dump();
+  EXPECT_THROW(store.load("imu0"), std::runtime_error);
+  std::ofstream(store.pathFor("imu0"), std::ios::binary) << std::string(2 << 20, ' ');
+  try {
+    store.load("imu0");
+    ADD_FAILURE() << "a 2 MiB file was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than a state file can be"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

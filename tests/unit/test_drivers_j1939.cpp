@@ -1,6 +1,8 @@
 // J1939 frames with known values, identifier parsing, pairing into IMU samples, and candump parsing.
 #include <gtest/gtest.h>
 
+#include "scratch_dir.hpp"
+
 #include <cmath>
 
 #include "imucal/core/units.hpp"
@@ -196,6 +198,13 @@ TEST(DriversCandump, LogAndAsciiFormats) {
   EXPECT_TRUE(parseCandumpLine("   ").error.empty());
 }
 
+// Feeds every frame of a log to the decoder; the number of samples it made.
+int decodeAll(J1939Imu& imu, const CandumpLog& log) {
+  int samples = 0;
+  for (const auto& f : log.frames) samples += imu.add(f.frame) ? 1 : 0;
+  return samples;
+}
+
 TEST(DriversCandump, BadLinesAreReportedWithTheirLineNumbers) {
   const std::string text =
       "(1700000000.000000) vcan0 0CF02AE2#007D007D007D0005\n"
@@ -225,10 +234,33 @@ TEST(DriversCandump, BadLinesAreReportedWithTheirLineNumbers) {
 
   // The short frame reaches the decoder and is counted there, not published; lines 1 and 10 pair.
   J1939Imu imu(J1939ImuConfig{});
-  int samples = 0;
-  for (const auto& f : log.frames) samples += imu.add(f.frame) ? 1 : 0;
-  EXPECT_EQ(samples, 1);
+  EXPECT_EQ(decodeAll(imu, log), 1);
   EXPECT_EQ(imu.counters().get("bad_length"), 1u);
+}
+
+TEST(DriversCandump, TimeStampBeyondAnyClockIsABadLineNotAnOverflow) {
+  // The shared reproducer: a pair of frames stamped (1e300), then a good pair. 1e300 s once overflowed
+  // the conversion to int64 microseconds, and every later sample was then dropped as going backwards.
+  const std::string path = imucal::testing::hostile("candump_timestamp_1e300.log");
+  const CandumpLog log = readCandumpFile(path);
+  ASSERT_EQ(log.errors.size(), 2u);
+  EXPECT_EQ(log.errors[0], path + ":1: time stamp '(1e300)' is beyond any clock (more than 1e11 s)");
+  EXPECT_EQ(log.error_lines, 2u);
+  ASSERT_EQ(log.frames.size(), 2u);
+  EXPECT_EQ(log.frames[0].frame.utime, 1'700'000'000'010'000);
+  EXPECT_EQ(log.frames[1].frame.utime, 1'700'000'000'011'000);
+  J1939Imu imu(J1939ImuConfig{});
+  EXPECT_EQ(decodeAll(imu, log), 1);
+  EXPECT_EQ(imu.counters().get("timestamp_backwards"), 0u);
+}
+
+TEST(DriversCandump, GarbageIsQuotedShortAndTheErrorListBounded) {
+  std::string text;
+  for (int i = 0; i < 1000; ++i) text += "(" + std::string(5000, '9') + ") can0 " + std::string(3000, 'Z') + "\n";
+  const CandumpLog log = parseCandump(text, "junk.log");
+  EXPECT_EQ(log.error_lines, 1000u);
+  ASSERT_EQ(log.errors.size(), CandumpLog::kMaxErrorsKept);
+  for (const auto& e : log.errors) EXPECT_LT(e.size(), 200u) << e.substr(0, 200);
 }
 
 TEST(DriversCandump, MissingFileIsAnInputError) {

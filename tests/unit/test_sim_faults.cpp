@@ -11,13 +11,14 @@ namespace imucal::sim {
 namespace {
 
 TEST(SimFaults, PlanParsesAndRejectsBadItems) {
-  const FaultPlan p = parseFaultPlan("nan=3,backwards=2,duplicate=4,range=1,foreign=5");
+  const FaultPlan p = parseFaultPlan("nan=3,backwards=2,duplicate=4,range=1,foreign=5,malformed=2");
   EXPECT_EQ(p.not_finite, 3);
   EXPECT_EQ(p.time_backwards, 2);
   EXPECT_EQ(p.duplicate, 4);
   EXPECT_EQ(p.out_of_range, 1);
   EXPECT_EQ(p.foreign, 5);
-  EXPECT_EQ(p.total(), 15);
+  EXPECT_EQ(p.malformed, 2);
+  EXPECT_EQ(p.total(), 17);
   EXPECT_EQ(parseFaultPlan("").total(), 0);
   EXPECT_THROW(parseFaultPlan("nan=x"), std::invalid_argument);
   EXPECT_THROW(parseFaultPlan("nan=-1"), std::invalid_argument);
@@ -73,6 +74,16 @@ TEST(SimFaults, EachFaultIsBadInItsOwnWay) {
   const auto foreign = makeFault(FaultKind::ForeignSensor, next, prev);
   EXPECT_EQ(foreign.sensor_id, "intruder");
   EXPECT_EQ(foreign.accel[2], next.accel[2]);
+  // Malformed: the encoding of `next` with the id's length (bytes 92..95 after the 8-byte fingerprint and
+  // 84 bytes of fixed fields) zero; it no longer decodes.
+  const auto good = faultBytes(FaultKind::Duplicate, next, next);
+  const auto bad = faultBytes(FaultKind::Malformed, next, prev);
+  ASSERT_EQ(bad.size(), 8u + 84u + 4u + 5u);
+  ASSERT_EQ(good.size(), bad.size());
+  for (std::size_t i = 0; i < bad.size(); ++i) EXPECT_EQ(bad[i], i >= 92 && i < 96 ? 0 : good[i]) << i;
+  EXPECT_EQ(good[95], 5);
+  imucal::imu_sample_t decoded;
+  EXPECT_LT(decoded.decode(bad.data(), 0, static_cast<int>(bad.size())), 0);
 }
 
 }  // namespace

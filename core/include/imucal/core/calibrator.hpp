@@ -2,6 +2,7 @@
 // The calibration engine: runs the error-state filter over recorded IMU and heading samples (possibly
 // several passes, each re-linearized about the previous one) and reports estimates, 1-sigma, history and
 // convergence. Knows nothing about files or middleware.
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -51,10 +52,20 @@ struct CalibrationResult {
 
 struct CalibrateOptions {
   bool keep_innovations = false;
+  // At most this many epochs in the history (evenly spread, first and last always kept); 0: every epoch,
+  // which the diagnosis needs (it pairs history[k] with imu[k]). A record costs about 0.5 kB, so an hour at
+  // 1 kHz kept whole is 1.8 GB.
+  std::size_t max_history_epochs = 0;
+};
+
+// The arithmetic overflowed on finite but absurd input: there is no result, not a NaN one.
+struct NonFiniteResult : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 // Throws std::invalid_argument with a clear message on unusable input (too few samples, not finite,
-// time not increasing); sample-level checks with file and line happen in io/ before this.
+// time not increasing) and NonFiniteResult when the filter's state stops being finite; sample-level checks
+// with file and line happen in io/ before this.
 CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
                             const FilterConfig& config, const CalibrateOptions& options = {});
 

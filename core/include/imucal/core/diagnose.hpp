@@ -3,6 +3,7 @@
 // explains it (value and 1-sigma), and how much of the gap adding it closes, repeated until nothing
 // significant is left. Effects are parameters of SensorHypothesis fitted by the filter's own innovation
 // likelihood (deterministic terms, process noise) or by the Allan deviation of long still data (noise).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,8 @@ struct DiagnoseOptions {
   double allan_min_still = 60.0;  // s
   // Correlation above which two effects are reported as indistinguishable on this motion.
   double indistinguishable_correlation = 0.95;
+  // Told before each candidate effect is tested (round, effect id): a diagnosis runs the filter many times.
+  std::function<void(int round, const std::string& effect)> progress;
 };
 
 // Implausible: significant, but the fitted size is beyond what the effect can physically have (more than

@@ -29,6 +29,9 @@ struct ServiceConfig {
   double heading_keep = 120.0;    // s of heading samples kept for the next session
   // Sensor ids accepted; samples of any other id are counted and dropped. Empty: every id is a sensor.
   std::vector<std::string> sensors;
+  // With an empty `sensors`: the first ids seen, at most this many, are sensors; the rest are counted as
+  // unknown. Ids come from the network, so without a bound a stream of new ids would grow without end.
+  std::size_t max_sensors = 16;
   // Find sessions in the stream by themselves; off: only after a trigger (one session per trigger), for
   // a vehicle whose ordinary motion can look like a calibration turn.
   bool automatic_sessions = true;
@@ -45,6 +48,7 @@ struct SensorReport {
   bool restored = false;          // loaded from disk, not made in this run
   std::optional<StoredCalibration> calibration;
   std::string failure;            // why the last session failed
+  std::string restore_error;      // why the persisted calibration was not restored (empty: none or restored)
   InputCounters imu;
   std::uint64_t heading_accepted = 0, heading_rejected = 0;
   MeasurementStats last_stats;
@@ -66,7 +70,8 @@ class CalibrationService {
   // New settings for what comes next (SIGHUP): screening and detection thresholds apply from the next
   // sample, the filter from the next session; calibrations, counters and buffered samples are kept.
   void reconfigure(ServiceConfig config);
-  // Loads the persisted calibration of a sensor (on start); true if one was found.
+  // Loads the persisted calibration of a sensor (on start); true if one was found. An untrusted file is
+  // moved aside and its reason kept in the report's restore_error (false, never an exception).
   bool restore(const std::string& sensor_id);
 
   const std::map<std::string, SensorReport>& reports() const { return reports_; }

@@ -2,6 +2,7 @@
 // Keeps the last good calibration of each sensor on disk so a restarted daemon can publish it at once.
 // A file is written whole or not at all (temporary file, fsync, rename, fsync of the directory) and
 // carries a schema version and a checksum, so a torn or edited file is refused rather than trusted.
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,9 +28,19 @@ class CalibrationStore {
   // Throws std::runtime_error naming the path when the file cannot be written durably.
   void save(const StoredCalibration& calibration) const;
   // Empty when there is none; throws std::runtime_error naming the path and the reason (bad checksum,
-  // unknown schema, malformed) when the file exists but cannot be trusted.
+  // unknown schema, malformed, not a regular file, too large, non-finite numbers) when something is there
+  // but cannot be trusted.
   std::optional<StoredCalibration> load(const std::string& sensor_id) const;
+  // Moves an untrusted state file aside (kept for inspection as <file>.corrupt-<utime_s>) so the next save
+  // can write a good one; returns the new path. Throws std::runtime_error naming the path on failure.
+  std::string quarantine(const std::string& sensor_id, std::int64_t utime_s) const;
+  // One file per id and one id per file (bytes outside [A-Za-z0-9_-] are spelled %XX). Throws
+  // std::invalid_argument with idProblem's reason for an id that cannot have a file.
   std::string pathFor(const std::string& sensor_id) const;
+  // Why an id cannot have a state file (empty, a file name over kMaxFileName, not UTF-8); "" when it can.
+  static std::string idProblem(const std::string& sensor_id);
+  // Leaves room under Linux's NAME_MAX (255) for the ".tmp" and ".corrupt-<time>" suffixes.
+  static constexpr std::size_t kMaxFileName = 200;
 
  private:
   std::string directory_;

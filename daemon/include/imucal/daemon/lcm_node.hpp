@@ -7,6 +7,7 @@
 #include <chrono>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 
 #include "imucal/daemon/calibration_service.hpp"
@@ -18,6 +19,7 @@ namespace imucal::daemon {
 // Daemon-wide counters published in every status.
 struct NodeCounters {
   std::uint64_t handler_errors = 0;
+  std::uint64_t decode_errors = 0;  // input messages that were not a valid message of their channel's type
   std::uint64_t triggers = 0;
   std::uint64_t config_reloads = 0;
   std::uint64_t config_errors = 0;
@@ -56,9 +58,13 @@ class LcmNode {
   };
   void subscribe();
   void unsubscribe();
-  void onImu(const lcm::ReceiveBuffer* rbuf, const std::string& channel, const imucal::imu_sample_t* msg);
-  void onHeading(const lcm::ReceiveBuffer* rbuf, const std::string& channel, const imucal::heading_sample_t* msg);
-  void onTrigger(const lcm::ReceiveBuffer* rbuf, const std::string& channel, const imucal::calibration_trigger_t* msg);
+  // Every subscription takes raw bytes and decodes them itself (imucal/lcm_decode.hpp): lcm-cpp's own
+  // decoding runs inside LCM's C dispatch, where nothing can catch what the generated decoder throws.
+  template <class Msg, void (LcmNode::*Handler)(const Msg&)>
+  void onBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void onImu(const imucal::imu_sample_t& msg);
+  void onHeading(const imucal::heading_sample_t& msg);
+  void onTrigger(const imucal::calibration_trigger_t& msg);
   void publishStatuses(double data_now, std::int64_t utime);
   void publishStatus(const SensorReport& report, double data_now, std::int64_t utime);
   double age(double since) const;
@@ -76,6 +82,7 @@ class LcmNode {
   std::map<std::string, double> last_imu_wall_;
   std::map<std::string, PeriodStart> period_;
   NodeCounters counters_;
+  std::set<std::string> decode_error_logged_;  // channels whose first undecodable message was logged
 };
 
 }  // namespace imucal::daemon

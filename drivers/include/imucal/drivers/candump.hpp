@@ -8,6 +8,7 @@
 // rejected with that reason. Remote frames (#R, "remote request") are returned flagged; CAN FD (##) and
 // error frames are rejected as not J1939 data.
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -31,9 +32,14 @@ struct CandumpFrame {
 };
 
 struct CandumpLog {
+  static constexpr std::size_t kMaxErrorsKept = 100;  // a binary file must not become a list of millions
   std::vector<CandumpFrame> frames;
-  std::vector<std::string> errors;  // "file:line: why", in file order
+  std::vector<std::string> errors;  // "file:line: why", in file order, the first kMaxErrorsKept
+  std::size_t error_lines = 0;      // every line that was not a frame, blank or a comment
 };
+
+// A replay reads the whole log into memory: larger logs are refused with this limit named.
+constexpr std::uintmax_t kMaxCandumpBytes = std::uintmax_t{1} << 30;
 
 // One frame in the log format (candump -l, canplayer's input): "(seconds.micros) interface ID#DATA".
 std::string formatCandumpLine(const CanFrame& frame, const std::string& interface);

@@ -24,6 +24,10 @@ std::vector<MagSample> readMagCsv(const std::string& path, const MagCsvFormat& f
 void checkImuUnits(const std::string& path, const std::vector<ImuSample>& samples,
                    const std::vector<long>& lines, const ImuCsvFormat& format);
 
+// Values no sensor of this kind can output (|accel| above 1000 g, |gyro| above 1000 rad/s): a corrupt file,
+// never data. Always checked, also with check_units off. Throws InputError naming `path` and the line.
+void checkImuRange(const std::string& path, const std::vector<ImuSample>& samples, const std::vector<long>& lines);
+
 // The median |field| must lie in 5..500 uT (Earth's field plus board offsets).
 void checkMagUnits(const std::string& path, const std::vector<MagSample>& samples, const MagCsvFormat& format);
 

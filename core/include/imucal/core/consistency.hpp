@@ -1,0 +1,23 @@
+#pragma once
+// Whether a finished calibration can be believed at all, judged from its own innovations. A filter whose
+// model describes the data has a mean normalized innovation squared (NIS) near 1 per component; far above,
+// the model is wrong for this recording (heading late or in the wrong unit, time in the wrong unit, the
+// device translated, a hole in the data) and neither the estimates nor their sigmas mean anything.
+#include <string>
+#include <vector>
+
+#include "imucal/core/calibrator.hpp"
+
+namespace imucal {
+
+struct ConsistencyLimits {
+  // Innovations three times the size the model gives them on average: no tuning explains that.
+  double max_nis_mean = 10.0;
+  // More heading samples refused by the innovation gate than accepted: the heading disagrees with the gyro.
+  double max_heading_rejected_fraction = 0.5;
+};
+
+// The reasons the result cannot be trusted, in words for a user; empty when there is none.
+std::vector<std::string> inconsistencies(const CalibrationResult& result, const ConsistencyLimits& limits = {});
+
+}  // namespace imucal

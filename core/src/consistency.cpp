@@ -1,0 +1,30 @@
+#include "imucal/core/consistency.hpp"
+
+#include <sstream>
+
+namespace imucal {
+
+std::vector<std::string> inconsistencies(const CalibrationResult& result, const ConsistencyLimits& limits) {
+  std::vector<std::string> out;
+  const MeasurementStats& s = result.stats;
+  const auto nis = [&](const char* what, double mean, long count) {
+    if (count <= 0 || mean <= limits.max_nis_mean) return;
+    std::ostringstream m;
+    m << what << " mean NIS is " << mean << " over " << count << " updates (a model that fits gives about 1; "
+      << "the limit is " << limits.max_nis_mean << ")";
+    out.push_back(m.str());
+  };
+  nis("zero-velocity", s.velocity_nis_mean, s.zero_velocity_updates);
+  nis("heading", s.heading_nis_mean, s.heading_updates);
+  const long offered = s.heading_updates + s.heading_rejected;
+  if (offered > 0 && static_cast<double>(s.heading_rejected) > limits.max_heading_rejected_fraction * static_cast<double>(offered)) {
+    std::ostringstream m;
+    m << s.heading_rejected << " of " << offered
+      << " heading samples failed the innovation gate: the heading disagrees with the gyro (late, another "
+         "unit or clock, or a disturbed magnetometer)";
+    out.push_back(m.str());
+  }
+  return out;
+}
+
+}  // namespace imucal
