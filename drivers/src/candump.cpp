@@ -62,6 +62,7 @@ std::string parseId(std::string_view text, CanFrame& f) {
   if (!isHex(text) || (text.size() != 3 && text.size() != 8)) return "identifier '" + io::excerpt(text) + "' is not 3 or 8 hex digits";
   f.id = hexValue(text);
   f.extended = text.size() == 8;
+  if (!f.extended && f.id > 0x7FF) return "identifier " + io::excerpt(text) + " is beyond the 11-bit standard range";
   if (f.extended && f.id > 0x1FFFFFFF) return "identifier " + io::excerpt(text) + " has bits above the 29-bit range (an error frame?)";
   return "";
 }

@@ -163,12 +163,16 @@ CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string
   return csv;
 }
 
-void checkTimeIncreasing(const CsvColumns& csv, std::size_t col, const std::string& unit) {
+void checkTimeIncreasing(const CsvColumns& csv, std::size_t col, const std::string& unit, double to_seconds) {
   const std::string& column = csv.names[col];
   for (std::size_t r = 1; r < csv.rows(); ++r) {
     const double prev = csv.at(r - 1, col);
     const double now = csv.at(r, col);
-    if (now > prev) continue;
+    if (now * to_seconds > prev * to_seconds) continue;
+    if (now > prev)
+      throwInputError(csv.path, csv.lines[r], "time in column '" + column + "' (" + formatExact(now) + " " + unit +
+                                                  ") is the same as on line " + std::to_string(csv.lines[r - 1]) +
+                                                  " once in seconds: closer than a double resolves at this size");
     if (now == prev)
       throwInputError(csv.path, csv.lines[r], "duplicate time in column '" + column + "' (" + formatExact(now) +
                                                    " " + unit + ", same as line " +

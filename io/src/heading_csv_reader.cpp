@@ -16,7 +16,7 @@ std::vector<HeadingSample> readHeadingCsv(const std::string& path, const Heading
   const std::vector<std::string> names{format.time, format.heading};
   checkDistinctColumns(path, names, {"time", "heading"});
   const CsvColumns csv = readCsvColumns(path, names);
-  checkTimeIncreasing(csv, 0, unitName(format.time_unit));
+  checkTimeIncreasing(csv, 0, unitName(format.time_unit), unitFactor(format.time_unit));
 
   const double time_factor = unitFactor(format.time_unit);
   const double angle_factor = unitFactor(format.unit);

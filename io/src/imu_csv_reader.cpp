@@ -11,7 +11,7 @@ std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& f
                                        format.gyro[0], format.gyro[1],  format.gyro[2]};
   checkDistinctColumns(path, names, {"time", "accel x", "accel y", "accel z", "gyro x", "gyro y", "gyro z"});
   const CsvColumns csv = readCsvColumns(path, names);
-  checkTimeIncreasing(csv, 0, unitName(format.time_unit));
+  checkTimeIncreasing(csv, 0, unitName(format.time_unit), unitFactor(format.time_unit));
 
   const double time_factor = unitFactor(format.time_unit);
   // Negating after the axis map is the same as before it: both are linear.

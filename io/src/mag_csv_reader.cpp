@@ -8,7 +8,7 @@ std::vector<MagSample> readMagCsv(const std::string& path, const MagCsvFormat& f
   const std::vector<std::string> names{format.time, format.field[0], format.field[1], format.field[2]};
   checkDistinctColumns(path, names, {"time", "field x", "field y", "field z"});
   const CsvColumns csv = readCsvColumns(path, names);
-  checkTimeIncreasing(csv, 0, unitName(format.time_unit));
+  checkTimeIncreasing(csv, 0, unitName(format.time_unit), unitFactor(format.time_unit));
 
   const double time_factor = unitFactor(format.time_unit);
   const double field_factor = unitFactor(format.unit);

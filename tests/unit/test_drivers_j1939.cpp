@@ -254,6 +254,12 @@ TEST(DriversCandump, TimeStampBeyondAnyClockIsABadLineNotAnOverflow) {
   EXPECT_EQ(imu.counters().get("timestamp_backwards"), 0u);
 }
 
+TEST(DriversCandump, StandardIdentifierBeyond11BitsIsRefused) {
+  // Found by fuzzing: "FFF" was taken as a standard frame although 11 bits end at 7FF.
+  EXPECT_EQ(parseCandumpLine("(1.000000) can0 FFF#00").error, "identifier FFF is beyond the 11-bit standard range");
+  EXPECT_TRUE(parseCandumpLine("(1.000000) can0 7FF#00").frame.has_value());
+}
+
 TEST(DriversCandump, GarbageIsQuotedShortAndTheErrorListBounded) {
   std::string text;
   for (int i = 0; i < 1000; ++i) text += "(" + std::string(5000, '9') + ") can0 " + std::string(3000, 'Z') + "\n";

@@ -232,3 +232,32 @@ TEST(IoCsvErrors, UnrequestedColumnsAreNotParsed) {
 
 }  // namespace
 }  // namespace imucal::io
+
+namespace imucal::io {
+namespace {
+
+// Found by fuzzing: two times that differ in the file but not once in seconds (here in us, a few ulp
+// apart) passed the reader and failed later in the calibrator without a file or line.
+TEST(IoCsvErrors, TimesThatBecomeEqualInSecondsAreNamedWithTheirLine) {
+  const auto path = writeFile("us_collide.csv",
+                              "t,ax,ay,az,gx,gy,gz\n255069.0257394217,0,0,-9.81,0,0,0\n255069.02573942172,0,0,-9.81,0,0,0\n");
+  ImuCsvFormat f;
+  f.time_unit = TimeUnit::Microsecond;
+  f.check_units = false;
+  EXPECT_CONTAINS(inputErrorOf([&] { readImuCsv(path, f); }),
+                  path + ":3: time in column 't' (255069.02573942172 us) is the same as on line 2 once in seconds");
+}
+
+TEST(IoCsvErrors, ValuesAndHeadersQuotedFromTheFileAreShort) {
+  const auto path = writeFile("long.csv", "t,ax,ay,az,gx,gy," + std::string(5000, 'q') + "\n");
+  const std::string msg = inputErrorOf([&] { readImuCsv(path); });
+  EXPECT_CONTAINS(msg, "missing column 'gz'");
+  EXPECT_LT(msg.size(), 400u) << msg.substr(0, 400);
+  const auto bad = writeFile("bad_value.csv", "t,ax,ay,az,gx,gy,gz\n0,0,0," + std::string(3000, 'x') + ",0,0,0\n");
+  const std::string value = inputErrorOf([&] { readImuCsv(bad); });
+  EXPECT_CONTAINS(value, bad + ":2: column 'az': not a number ('xxxx");
+  EXPECT_CONTAINS(value, "... (3000 bytes)')");
+}
+
+}  // namespace
+}  // namespace imucal::io

@@ -29,9 +29,10 @@ constexpr std::size_t kMaxCsvRows = 20'000'000;
 // value in a requested column, or a file without data rows. Unrequested columns are not parsed.
 CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names);
 
-// Throws InputError unless column `col` strictly increases (a step back or a repeated time stamp is named
-// with its line). `unit` is the file's time unit, shown next to the values.
-void checkTimeIncreasing(const CsvColumns& csv, std::size_t col, const std::string& unit);
+// Throws InputError unless column `col` strictly increases, also once multiplied by `to_seconds` (two
+// stamps a few ulp apart can become one); a step back or a repeated time stamp is named with its line.
+// `unit` is the file's time unit, shown next to the values.
+void checkTimeIncreasing(const CsvColumns& csv, std::size_t col, const std::string& unit, double to_seconds);
 
 // Throws InputError naming `path` if two requested names are the same (one column feeding two roles is
 // almost always a copy-paste slip in a config). `roles` describes each name ("accel x", ...).
