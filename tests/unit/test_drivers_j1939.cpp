@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "imucal/core/units.hpp"
 #include "imucal/drivers/candump.hpp"
@@ -117,6 +118,31 @@ TEST(DriversJ1939, PairsRateAndAccelerationIntoOneFrdSample) {
   }
   EXPECT_TRUE(std::isnan(r->temperature_c));
   EXPECT_EQ(imu.counters().get("samples"), 1u);
+}
+
+// Found by fuzz_j1939: the pairing took the difference of two stamps, which overflowed (and then paired
+// frames 2^64 us apart) for stamps at the ends of the int64 range.
+TEST(DriversJ1939, StampsAtTheEndsOfTheRangeAreNotPaired) {
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  J1939Imu imu{J1939ImuConfig{}};
+  const auto ari = encodeAngularRate(0.0, 0.0, 0.0, kGood, std::nullopt);
+  const auto accs = encodeAcceleration(0.0, 0.0, 9.81, kGood);
+  EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, ari, kMin + 10)));
+  EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0xE2, accs, kMax - 10)));
+  EXPECT_EQ(imu.counters().get("unpaired"), 1u);
+  EXPECT_EQ(imu.counters().get("samples"), 0u);
+}
+
+// The latency is subtracted without going below the smallest stamp.
+TEST(DriversJ1939, LatencyIsNotSubtractedPastTheSmallestStamp) {
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+  J1939Imu imu{J1939ImuConfig{}};
+  const auto ari = encodeAngularRate(0.0, 0.0, 0.0, kGood, 0.002);
+  EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, ari, kMin + 1000)));
+  const auto r = imu.add(frame(kPgnAcceleration, 0xE2, encodeAcceleration(0.0, 0.0, 9.81, kGood), kMin + 1500));
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->utime, kMin);
 }
 
 TEST(DriversJ1939, SourceFilterWrongPgnAndUnusableValues) {
