@@ -276,6 +276,20 @@ TEST(DriversJ1939, ConfigErrorsNameTheKey) {
   EXPECT_THROW(parseJ1939Config("interface: vcan0\nsource_adress: 0xE2\n", "j.yaml"), io::InputError);
 }
 
+// pair_window_ms: 1e300 was accepted and its microseconds overflowed the int64 window.
+TEST(DriversJ1939, PairWindowMustFitMicroseconds) {
+  for (const char* yaml : {"pair_window_ms: 1e300\n", "pair_window_ms: 0.0001\n"}) {
+    try {
+      parseJ1939Config(yaml, "j.yaml");
+      ADD_FAILURE() << yaml << " was accepted";
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("j.yaml:1: pair_window_ms: must be between 0.001 and 1000"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(parseJ1939Config("pair_window_ms: 1000\n", "j.yaml").imu.pair_window_us, 1'000'000);
+}
+
 }  // namespace
 }  // namespace imucal::drivers
 
