@@ -20,7 +20,7 @@ targets=("$@")
 
 declare -A dict=([fuzz_imu_csv]=csv [fuzz_heading_csv]=csv [fuzz_mag_csv]=csv [fuzz_calibrate_config]=calibrate_config
                  [fuzz_daemon_config]=daemon_config [fuzz_sim_config]=sim_config [fuzz_driver_config]=driver_config
-                 [fuzz_candump]=candump)
+                 [fuzz_candump]=candump [fuzz_calibration_store]=calibration_store)
 
 # -O1 without NDEBUG: asserts (Eigen's index checks among them) count as findings.
 # The compiler only on the first configure: naming it again differently (clang++ vs clang++-14) would
@@ -32,6 +32,8 @@ nice -n 10 cmake -S "$root" -B "$build" "${compiler[@]}" -DCMAKE_BUILD_TYPE=RelW
   -DIMUCAL_BUILD_TESTS=OFF -DIMUCAL_BUILD_BENCHMARKS=OFF >/dev/null
 nice -n 10 cmake --build "$build" -j"$jobs" --target "${targets[@]}"
 
+# Stacks for UBSan findings too (ASan prints its own); halting makes every report a kept input.
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1${UBSAN_OPTIONS:+:$UBSAN_OPTIONS}"
 failed=0
 printf '%-24s %12s %7s %6s %9s %5s\n' target executions crashes leaks timeouts ooms
 for t in "${targets[@]}"; do

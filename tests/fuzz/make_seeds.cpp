@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -71,7 +72,12 @@ void storeSeeds(const fs::path& dir) {
   c.converged = {true, true, false};
   c.convergence_time_s = {12.5, 14.0, -1.0};
   c.model = "bias, FRD, ESKF 15 states";
-  imucal::daemon::CalibrationStore(dir.string()).save(c);  // calibration-imu0.json
+  const imucal::daemon::CalibrationStore store(dir.string());
+  store.save(c);  // calibration-imu0.json
+  // fuzz_calibration_store's payload form: 'P' and the payload of the file just written.
+  std::ifstream in(store.pathFor(c.sensor_id));
+  const std::string payload = "P" + nlohmann::json::parse(in).at("payload").get<std::string>();
+  writeFile(dir / "payload.json", std::vector<std::uint8_t>(payload.begin(), payload.end()));
 }
 
 void nodeSeeds(const fs::path& dir) {
