@@ -1,10 +1,21 @@
 #include "imucal/drivers/j1939_imu.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace imucal::drivers {
 
 using namespace j1939;
+
+namespace {
+
+// Receive times come from a socket or a log and may be anything: far-apart stamps must not overflow.
+std::uint64_t distanceUs(std::int64_t a, std::int64_t b) {
+  return a > b ? static_cast<std::uint64_t>(a) - static_cast<std::uint64_t>(b)
+               : static_cast<std::uint64_t>(b) - static_cast<std::uint64_t>(a);
+}
+
+}  // namespace
 
 J1939Imu::J1939Imu(const J1939ImuConfig& config)
     : config_(config),
@@ -64,7 +75,7 @@ std::optional<ImuReading> J1939Imu::add(const CanFrame& frame) {
 
 std::optional<ImuReading> J1939Imu::pair() {
   if (!rate_ || !accel_) return std::nullopt;
-  if (std::abs(rate_->utime - accel_->utime) > config_.pair_window_us) {
+  if (config_.pair_window_us < 0 || distanceUs(rate_->utime, accel_->utime) > static_cast<std::uint64_t>(config_.pair_window_us)) {
     counters_.increment("unpaired");  // the older frame's partner never came
     if (rate_->utime < accel_->utime) rate_.reset();
     else accel_.reset();
@@ -83,7 +94,12 @@ std::optional<ImuReading> J1939Imu::pair() {
   const bool rates_ok = acceptValues(rates, rate_merits);
   const bool accels_ok = acceptValues(accels, accel_merits);
   if (!rates_ok || !accels_ok) return std::nullopt;
-  if (config_.subtract_latency && r.latency_s) utime -= static_cast<std::int64_t>(std::llround(*r.latency_s * 1e6));
+  if (config_.subtract_latency && r.latency_s) {
+    // At most 125 ms (one byte of 0.5 ms); a stamp that close to the smallest one stays there.
+    const std::int64_t latency_us = std::llround(*r.latency_s * 1e6);
+    utime = utime >= std::numeric_limits<std::int64_t>::min() + latency_us ? utime - latency_us
+                                                                           : std::numeric_limits<std::int64_t>::min();
+  }
   if (last_utime_ && utime <= *last_utime_) {
     counters_.increment("timestamp_backwards");
     return std::nullopt;

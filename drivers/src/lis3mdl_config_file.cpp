@@ -19,7 +19,8 @@ void headingSection(io::YamlSection s, Lis3mdlFileConfig& c) {
   c.heading.iron_fit_points = s.integer("iron_fit_points", 0, io::Range::atLeast(0));
   c.tilt_sigma = s.number("tilt_sigma_deg", 1.0, io::Range::between(0, 90)) * kDeg;
   c.tilt_time_constant_s = s.number("tilt_time_constant_s", c.tilt_time_constant_s, io::Range::nonNegative());
-  c.max_tilt_age_s = s.number("max_tilt_age_s", c.max_tilt_age_s, io::Range::positive());
+  // imucal-lis3mdl turns it into int64 microseconds: bounded so it fits (an hour is already no tilt).
+  c.max_tilt_age_s = s.number("max_tilt_age_s", c.max_tilt_age_s, io::Range::between(1e-6, 3600));
   c.imu_channel = s.text("imu_channel", c.imu_channel);
   c.imu_sensor_id = s.text("imu_sensor_id", "");
   s.finish();

@@ -4,6 +4,7 @@
 #include "scratch_dir.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "imucal/core/units.hpp"
 #include "imucal/drivers/candump.hpp"
@@ -119,6 +120,31 @@ TEST(DriversJ1939, PairsRateAndAccelerationIntoOneFrdSample) {
   }
   EXPECT_TRUE(std::isnan(r->temperature_c));
   EXPECT_EQ(imu.counters().get("samples"), 1u);
+}
+
+// Found by fuzz_j1939: the pairing took the difference of two stamps, which overflowed (and then paired
+// frames 2^64 us apart) for stamps at the ends of the int64 range.
+TEST(DriversJ1939, StampsAtTheEndsOfTheRangeAreNotPaired) {
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+  constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+  J1939Imu imu{J1939ImuConfig{}};
+  const auto ari = encodeAngularRate(0.0, 0.0, 0.0, kGood, std::nullopt);
+  const auto accs = encodeAcceleration(0.0, 0.0, 9.81, kGood);
+  EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, ari, kMin + 10)));
+  EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0xE2, accs, kMax - 10)));
+  EXPECT_EQ(imu.counters().get("unpaired"), 1u);
+  EXPECT_EQ(imu.counters().get("samples"), 0u);
+}
+
+// The latency is subtracted without going below the smallest stamp.
+TEST(DriversJ1939, LatencyIsNotSubtractedPastTheSmallestStamp) {
+  constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+  J1939Imu imu{J1939ImuConfig{}};
+  const auto ari = encodeAngularRate(0.0, 0.0, 0.0, kGood, 0.002);
+  EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, ari, kMin + 1000)));
+  const auto r = imu.add(frame(kPgnAcceleration, 0xE2, encodeAcceleration(0.0, 0.0, 9.81, kGood), kMin + 1500));
+  ASSERT_TRUE(r);
+  EXPECT_EQ(r->utime, kMin);
 }
 
 TEST(DriversJ1939, SourceFilterWrongPgnAndUnusableValues) {
@@ -286,6 +312,20 @@ TEST(DriversJ1939, ConfigErrorsNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("source_address"), std::string::npos) << e.what();
   }
   EXPECT_THROW(parseJ1939Config("interface: vcan0\nsource_adress: 0xE2\n", "j.yaml"), io::InputError);
+}
+
+// pair_window_ms: 1e300 was accepted and its microseconds overflowed the int64 window.
+TEST(DriversJ1939, PairWindowMustFitMicroseconds) {
+  for (const char* yaml : {"pair_window_ms: 1e300\n", "pair_window_ms: 0.0001\n"}) {
+    try {
+      parseJ1939Config(yaml, "j.yaml");
+      ADD_FAILURE() << yaml << " was accepted";
+    } catch (const io::InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("j.yaml:1: pair_window_ms: must be between 0.001 and 1000"), std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_EQ(parseJ1939Config("pair_window_ms: 1000\n", "j.yaml").imu.pair_window_us, 1'000'000);
 }
 
 }  // namespace

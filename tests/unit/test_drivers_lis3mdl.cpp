@@ -291,5 +291,16 @@ TEST(DriversLis3mdl, ConfigErrorsNameFileLineAndKey) {
   EXPECT_NE(message("bus: /dev/i2c-1\naddress: 0x1C\nheading: {tilt_sigma: 3}\n").find("m.yaml:3: heading: unknown key 'tilt_sigma'"), std::string::npos);
 }
 
+// max_tilt_age_s: 1e300 was accepted, and imucal-lis3mdl's conversion to int64 microseconds overflowed.
+TEST(DriversLis3mdl, MaxTiltAgeMustFitMicroseconds) {
+  try {
+    parseLis3mdlConfig("bus: /dev/i2c-1\naddress: 0x1C\nheading: {max_tilt_age_s: 1e300}\n", "m.yaml");
+    FAIL() << "accepted";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("m.yaml:3: heading.max_tilt_age_s: must be between"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(parseLis3mdlConfig("bus: /dev/i2c-1\naddress: 0x1C\nheading: {max_tilt_age_s: 3600}\n", "m.yaml").max_tilt_age_s, 3600.0);
+}
+
 }  // namespace
 }  // namespace imucal::drivers
