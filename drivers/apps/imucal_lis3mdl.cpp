@@ -7,27 +7,12 @@
 #include "i2c_process.hpp"
 #include "imucal/drivers/emulation/lis3mdl_emulation.hpp"
 #include "imucal/drivers/lis3mdl_config_file.hpp"
-#include "imucal/lcm_decode.hpp"
+#include "tilt_input.hpp"
 
 namespace {
 
 using namespace imucal::drivers;
 
-struct TiltInput {
-  TiltTracker tracker;
-  std::string sensor_id;  // empty: any
-  std::uint64_t decode_errors = 0;
-  // Raw bytes, decoded here: lcm-cpp's own decoding would throw inside LCM's dispatch on a forged packet.
-  void on(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-    imucal::imu_sample_t m;
-    if (rbuf == nullptr || !imucal::decodeMessage(*rbuf, m)) {
-      if (decode_errors++ == 0) spdlog::warn("{}: a message that is not an imu_sample_t (dropped; counted, logged once)", channel);
-      return;
-    }
-    if (!sensor_id.empty() && m.sensor_id != sensor_id) return;
-    tracker.add(m.utime, imucal::Vec3(m.accel[0], m.accel[1], m.accel[2]));
-  }
-};
 
 int run(const node::DriverOptions& o) {
   const Lis3mdlFileConfig cfg = loadLis3mdlConfig(o.config);
@@ -42,20 +27,20 @@ int run(const node::DriverOptions& o) {
                           });
   Lis3mdlDriver driver(device.bus(), cfg.chip, clock);
   driver.start();
-  TiltInput tilt{TiltTracker(cfg.tilt_time_constant_s, cfg.tilt_sigma, static_cast<std::int64_t>(cfg.max_tilt_age_s * 1e6)),
-                 cfg.imu_sensor_id};
-  if (!o.sensor_id.empty()) tilt.sensor_id = o.sensor_id;  // heading_sample_t has no sensor id: --sensor-id picks the IMU
-  lcm.subscribe(cfg.imu_channel, &TiltInput::on, &tilt);
+  // heading_sample_t has no sensor id: --sensor-id picks the IMU.
+  node::TiltInput tilt(TiltTracker(cfg.tilt_time_constant_s, cfg.tilt_sigma, static_cast<std::int64_t>(cfg.max_tilt_age_s * 1e6)),
+                       o.sensor_id.empty() ? cfg.imu_sensor_id : o.sensor_id);
+  lcm.subscribe(cfg.imu_channel, &node::TiltInput::onBytes, &tilt);
   spdlog::info("{}: LIS3MDL ready: +-{} gauss, {} Hz, {}; tilt from {} ({}); publishing on {}", deviceName(device.bus(), cfg.chip.address),
                cfg.chip.full_scale_gauss, cfg.chip.odr_hz, device.sampling(), cfg.imu_channel,
-               tilt.sensor_id.empty() ? std::string("any sensor") : tilt.sensor_id, cfg.process.channel);
+               tilt.sensorId().empty() ? std::string("any sensor") : tilt.sensorId(), cfg.process.channel);
 
   Counters heading_counters({"headings", "no_tilt"});
   std::uint64_t published = 0;
   device.wire(loop, [&](std::optional<std::int64_t> edge) {
     const auto r = driver.read(edge);
     if (!r || !loop.running()) return;
-    const auto t = tilt.tracker.at(r->utime);
+    const auto t = tilt.tracker().at(r->utime);
     if (!t) {
       heading_counters.increment("no_tilt");
       return;
@@ -76,7 +61,7 @@ int run(const node::DriverOptions& o) {
   node::CounterLog counter_log(loop, cfg.process.counters_log_period_s, "lis3mdl",
                                [&] {
                                  return driver.counters().summary() + " " + heading_counters.summary() +
-                                        " imu_decode_errors=" + std::to_string(tilt.decode_errors);
+                                        " imu_decode_errors=" + std::to_string(tilt.decodeErrors());
                                });
   loop.run();
   node::logStop(loop, static_cast<std::int64_t>(published), "headings");

@@ -18,6 +18,7 @@ std::vector<MagSample> readMagCsv(const std::string& path, const MagCsvFormat& f
     samples[r].field = format.axes.apply(Vec3(csv.at(r, 1), csv.at(r, 2), csv.at(r, 3)) * field_factor);
   }
   if (format.check_units) checkMagUnits(path, samples, format);
+  checkMagRange(path, samples, csv.lines);
   if (format.retime_uniformly) retimeSamplesUniformly(samples);
   return samples;
 }

@@ -68,12 +68,22 @@ void checkImuRange(const std::string& path, const std::vector<ImuSample>& sample
   for (std::size_t i = 0; i < samples.size(); ++i) {
     const double a = samples[i].accel.cwiseAbs().maxCoeff(), w = samples[i].gyro.cwiseAbs().maxCoeff();
     const long line = i < lines.size() ? lines[i] : 0;
-    if (a > kMaxAccel)
+    if (!(a <= kMaxAccel))
       throwInputError(path, line, "accelerometer value of " + formatExact(a) + " m/s^2: no accelerometer measures "
                                   "beyond 1000 g (a corrupt row?)");
-    if (w > kMaxGyro)
+    if (!(w <= kMaxGyro))
       throwInputError(path, line, "gyro value of " + formatExact(w) + " rad/s: no gyro measures beyond 1000 rad/s "
                                   "(a corrupt row?)");
+  }
+}
+
+void checkMagRange(const std::string& path, const std::vector<MagSample>& samples, const std::vector<long>& lines) {
+  constexpr double kMaxFieldUt = 1e6;
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const double b = samples[i].field.cwiseAbs().maxCoeff();
+    if (!(b <= kMaxFieldUt))
+      throwInputError(path, i < lines.size() ? lines[i] : 0,
+                      "magnetic field of " + formatExact(b) + " uT: no magnetometer measures beyond 1 T (a corrupt row?)");
   }
 }
 

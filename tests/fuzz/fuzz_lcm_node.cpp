@@ -1,5 +1,5 @@
-// LCM bytes into every subscriber of the daemon's real front end (daemon::LcmNode over memq://, in
-// process, never the network). Input: records of [channel byte][length, 2 bytes little-endian][message
+// LCM bytes into every subscriber: the daemon's real front end (daemon::LcmNode over memq://, in process,
+// never the network) and the LIS3MDL driver's IMU subscriber (drivers::node::TiltInput) on the IMU channel. Input: records of [channel byte][length, 2 bytes little-endian][message
 // bytes]; the channel byte picks IMU, heading or trigger, and a last record may be short (it takes what is
 // left). Several records in one input let samples build state (gaps, sequence numbers, sessions).
 #include <spdlog/spdlog.h>
@@ -9,6 +9,7 @@
 
 #include "fuzz_expect.hpp"
 #include "imucal/daemon/lcm_node.hpp"
+#include "tilt_input.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   spdlog::set_level(spdlog::level::off);  // a message per rejected input would drown libFuzzer's output
@@ -23,6 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   double wall = 0.0;  // a clock that only the input moves, so a crash replays the same way
   const NodeConfig config;
   LcmNode node(lcm, config, service, [&wall] { return wall; });
+  imucal::drivers::node::TiltInput tilt(imucal::drivers::TiltTracker(0.5, 0.01, 1'000'000), "");
+  lcm.subscribe(config.imu_channel, &imucal::drivers::node::TiltInput::onBytes, &tilt);
   const std::string channels[3] = {config.imu_channel, config.heading_channel, config.trigger_channel};
 
   std::size_t at = 0;

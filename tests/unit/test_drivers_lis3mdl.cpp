@@ -12,6 +12,8 @@
 #include "imucal/drivers/lis3mdl_config_file.hpp"
 #include "imucal/drivers/lis3mdl_driver.hpp"
 #include "imucal/drivers/lis3mdl_registers.hpp"
+#include "scratch_dir.hpp"
+#include "tilt_input.hpp"
 #include "imucal/drivers/mag_heading.hpp"
 #include "imucal/io/errors.hpp"
 
@@ -304,3 +306,38 @@ TEST(DriversLis3mdl, MaxTiltAgeMustFitMicroseconds) {
 
 }  // namespace
 }  // namespace imucal::drivers
+
+namespace imucal::drivers::node {
+namespace {
+
+// The LIS3MDL driver's IMU subscriber over memq://: the 97-byte packet that once ended imucal-lis3mdl is
+// counted and dropped, and a good sample after it still sets the tilt.
+TEST(DriversLis3mdl, TiltInputSurvivesAnUndecodablePacket) {
+  lcm::LCM lcm("memq://");
+  TiltInput input(TiltTracker(0.5, 0.01, 1'000'000), "imu0");
+  lcm.subscribe("IMUCAL_IMU", &TiltInput::onBytes, &input);
+  const std::string bad = imucal::testing::readFile(imucal::testing::hostile("udp_payload_imu_sample_strlen0.bin"));
+  lcm.publish("IMUCAL_IMU", bad.data(), static_cast<unsigned int>(bad.size()));
+  imucal::imu_sample_t good{};
+  good.utime = 5'000'000;
+  good.accel[2] = -9.80665;
+  good.sensor_id = "imu0";
+  lcm.publish("IMUCAL_IMU", &good);
+  imucal::imu_sample_t other = good;  // another IMU, on its side: must not tilt imu0's heading
+  other.utime = 5'001'000;
+  other.sensor_id = "imu1";
+  other.accel[1] = -9.80665;
+  other.accel[2] = 0.0;
+  lcm.publish("IMUCAL_IMU", &other);
+  while (lcm.handleTimeout(0) > 0) {
+  }
+  EXPECT_EQ(input.decodeErrors(), 1u);
+  const auto tilt = input.tracker().at(5'000'000);
+  ASSERT_TRUE(tilt.has_value());
+  EXPECT_NEAR(tilt->roll, 0.0, 1e-12);
+  EXPECT_NEAR(tilt->pitch, 0.0, 1e-12);
+  EXPECT_FALSE(input.tracker().at(7'000'000).has_value());  // older than the tracker's 1 s
+}
+
+}  // namespace
+}  // namespace imucal::drivers::node

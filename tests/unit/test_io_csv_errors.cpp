@@ -248,6 +248,15 @@ TEST(IoCsvErrors, TimesThatBecomeEqualInSecondsAreNamedWithTheirLine) {
                   path + ":3: time in column 't' (255069.02573942172 us) is the same as on line 2 once in seconds");
 }
 
+// Found by fuzzing: 0.24581e308 gauss is a finite number in the file and infinite in uT.
+TEST(IoCsvErrors, FieldThatOverflowsInMicroteslaIsNamedWithItsLine) {
+  const auto path = writeFile("mag_overflow.csv", "t,mx,my,mz\n0,0.2,-0.1,-0.4\n0.1,0.24581e308,-0.1,-0.4\n");
+  MagCsvFormat f;
+  f.unit = MagUnit::Gauss;
+  f.check_units = false;
+  EXPECT_CONTAINS(inputErrorOf([&] { readMagCsv(path, f); }), path + ":3: magnetic field of inf uT: no magnetometer measures beyond 1 T");
+}
+
 TEST(IoCsvErrors, ValuesAndHeadersQuotedFromTheFileAreShort) {
   const auto path = writeFile("long.csv", "t,ax,ay,az,gx,gy," + std::string(5000, 'q') + "\n");
   const std::string msg = inputErrorOf([&] { readImuCsv(path); });

@@ -28,6 +28,10 @@ void checkImuUnits(const std::string& path, const std::vector<ImuSample>& sample
 // never data. Always checked, also with check_units off. Throws InputError naming `path` and the line.
 void checkImuRange(const std::string& path, const std::vector<ImuSample>& samples, const std::vector<long>& lines);
 
+// A field component beyond 1 T (a million times Earth's) in uT, or one the unit conversion overflowed: a
+// corrupt row. Always checked. Throws InputError naming `path` and the line.
+void checkMagRange(const std::string& path, const std::vector<MagSample>& samples, const std::vector<long>& lines);
+
 // The median |field| must lie in 5..500 uT (Earth's field plus board offsets).
 void checkMagUnits(const std::string& path, const std::vector<MagSample>& samples, const MagCsvFormat& format);
 
