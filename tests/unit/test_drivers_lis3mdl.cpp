@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <limits>
 
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/units.hpp"
@@ -294,6 +295,19 @@ TEST(DriversLis3mdl, ConfigErrorsNameFileLineAndKey) {
 }
 
 // max_tilt_age_s: 1e300 was accepted, and imucal-lis3mdl's conversion to int64 microseconds overflowed.
+// Found by fuzzing the LCM subscriber: stamps from the two ends of int64 overflowed their difference, and
+// the tracker averaged across 2^64 us instead of starting over.
+TEST(DriversLis3mdl, TiltTrackerTakesStampsFarApartAsAGap) {
+  TiltTracker t(0.5, 0.01, 200'000);
+  const std::int64_t early = std::numeric_limits<std::int64_t>::min() + 1000, late = std::numeric_limits<std::int64_t>::max();
+  t.add(early, Vec3(0.0, 0.0, -units::kStandardGravity));
+  t.add(late, Vec3(0.0, -units::kStandardGravity, 0.0));  // on its side: roll 90 deg
+  const auto tilt = t.at(late);
+  ASSERT_TRUE(tilt.has_value());
+  EXPECT_NEAR(std::abs(tilt->roll), 90.0 * units::deg, 1e-9);  // the new sample alone, not an average
+  EXPECT_FALSE(t.at(early).has_value());
+}
+
 TEST(DriversLis3mdl, MaxTiltAgeMustFitMicroseconds) {
   try {
     parseLis3mdlConfig("bus: /dev/i2c-1\naddress: 0x1C\nheading: {max_tilt_age_s: 1e300}\n", "m.yaml");
