@@ -26,8 +26,8 @@ const sim::SimOutput& paperData() {
 
 FilterConfig configFor(int states) {
   FilterConfig cfg;
-  cfg.model.accel_scale = states > 15;
-  cfg.model.gyro_scale = states > 15;
+  cfg.model.estimate(ParamBlock::AccelScale, states > 15);
+  cfg.model.estimate(ParamBlock::GyroScale, states > 15);
   return cfg;
 }
 

@@ -48,12 +48,17 @@ std::string fixed1(double v) {
 }
 
 void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
+  for (const auto& w : r.warnings) std::cout << "warning: " << w << '\n';
+  if (r.noise_measured.valid)
+    std::cout << "noise measured on " << fixed1(r.noise_measured.still_seconds) << " s still: VRW "
+              << std::setprecision(3) << r.noise_used.accel_white / units::m_per_s_per_sqrt_h << " m/s/sqrt(h), ARW "
+              << r.noise_used.gyro_white / units::deg_per_sqrt_h << " deg/sqrt(h)\n";
   std::cout << "parameter        estimate        1-sigma   converged  t_conv_s" << (truth ? "      truth     error/sigma" : "")
             << '\n';
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     const int i = static_cast<int>(j);
     const io::ParamUnit unit = io::paramUnit(r.names[j]);
-    std::cout << std::left << std::setw(14) << r.names[j] << std::right << std::fixed << std::setprecision(1)
+    std::cout << std::left << std::setw(24) << r.names[j] << std::right << std::fixed << std::setprecision(1)
               << std::setw(12) << r.estimate(i) / unit.factor << ' ' << std::setw(12) << r.sigma(i) / unit.factor << ' '
               << std::left << std::setw(6) << unit.human << std::right << std::setw(5) << (r.converged[j] ? "yes" : "no")
               << std::setw(10) << (std::isfinite(r.convergence_time(i)) ? fixed1(r.convergence_time(i)) : "-");

@@ -10,6 +10,7 @@
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/heading_model.hpp"
 #include "imucal/core/lever_arm.hpp"
+#include "imucal/core/param_vector.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/static_detector.hpp"
@@ -65,8 +66,8 @@ struct PassOutput {
 };
 
 PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
-                   const std::vector<bool>& still, const FilterConfig& config, const VecX& params0, bool feedback,
-                   bool keep_innovations, std::size_t max_history_epochs) {
+                   const std::vector<bool>& still, const FilterConfig& config, const VecX& params0,
+                   const VecX& prior_mean, bool feedback, bool keep_innovations, std::size_t max_history_epochs) {
   const auto& m = config.measurements;
   Eskf filter(config);
   const StateLayout& layout = filter.layout();
@@ -75,8 +76,11 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
                                                   config, params0, layout);
   NavState nav0 = init.nav;
   // The IMU sits at the lever arm from the centre, which the position pseudo-observation holds at zero.
-  nav0.p = leverArmPosition(nav0.q_nb.toRotationMatrix(), m.lever_arm);
-  filter.initialize(imu.front(), nav0, params0, init.P0);
+  const Mat3 c0 = nav0.q_nb.toRotationMatrix();
+  nav0.p = leverArmPosition(c0, toCalibrationParams(layout, params0, config.model).lever_arm);
+  StateMat P0 = init.P0;
+  correlateStartWithLeverArm(P0, layout, c0);
+  filter.initialize(imu.front(), nav0, params0, P0, prior_mean);
   filter.setFeedback(feedback);
 
   PassOutput out;
@@ -149,28 +153,65 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
 
 }  // namespace
 
-CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& raw_heading,
-                            const FilterConfig& config, const CalibrateOptions& options) {
-  validate(imu, raw_heading);
+CalibrationResult calibrate(const std::vector<ImuSample>& recording, const std::vector<HeadingSample>& raw_heading,
+                            const FilterConfig& given, const CalibrateOptions& options) {
+  validate(recording, raw_heading);
+  CalibrationResult result;
+  // Level on a quiet stretch, wherever it is: the samples before it are not used.
+  const AlignmentWindow window = findAlignmentWindow(recording, given.alignment_time);
+  if (!window.usable) {
+    std::ostringstream msg;
+    msg << "calibrate: no still stretch to level on: the quietest " << given.alignment_time << " s (from t = "
+        << recording[window.first].t << " s) has a gyro spread of " << window.gyro_spread * 180.0 / 3.14159265358979323846
+        << " deg/s and an accelerometer spread of " << window.accel_spread
+        << " m/s^2; hold the device still for a moment before the motion";
+    throw std::invalid_argument(msg.str());
+  }
+  if (window.first > 0) {
+    std::ostringstream msg;
+    msg << "alignment: the recording moves at its start; the calibration starts at its first quiet stretch, t = "
+        << recording[window.first].t << " s (" << window.first << " samples before it unused)";
+    result.warnings.push_back(msg.str());
+  }
+  std::vector<ImuSample> trimmed;
+  if (window.first > 0) trimmed.assign(recording.begin() + static_cast<std::ptrdiff_t>(window.first), recording.end());
+  const std::vector<ImuSample>& imu = window.first > 0 ? trimmed : recording;
+  result.first_sample = window.first;
+  if (imu.size() < 10) throw std::invalid_argument("calibrate: fewer than 10 IMU samples after the first quiet stretch");
+  FilterConfig config = effectiveConfig(given, &result.warnings);
+  const std::vector<bool> still = detectStill(imu);
+  if (config.noise.from_data) {
+    result.noise_measured = estimateWhiteNoise(imu, still);
+    if (result.noise_measured.valid) {
+      config.noise.accel_white = result.noise_measured.accel_white_rms;
+      config.noise.gyro_white = result.noise_measured.gyro_white_rms;
+    } else {
+      result.warnings.push_back("noise: too little still data to measure the white noise; the configured "
+                                "densities are used");
+    }
+  }
+  result.noise_used = config.noise;
   std::vector<HeadingSample> heading = raw_heading;
   const HeadingErrors heading_errors{config.measurements.heading_bias, config.measurements.heading_latency};
   for (auto& h : heading) h.heading = heading_errors.correct(h.heading);
   if (config.passes < 1) throw std::invalid_argument("calibrate: passes must be at least 1");
   const StateLayout layout = StateLayout::make(config.model);
-  const std::vector<bool> still = detectStill(imu);
 
-  CalibrationResult result;
   result.layout = layout;
   result.names = layout.paramNames();
   result.prior_sigma = priorCovariance(config, layout, 0.0).diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
 
-  VecX params = VecX::Zero(layout.paramCount());
+  // Every pass keeps the original prior: later passes only move the point the model is linearized at, so a
+  // direction the data cannot see stays at its prior however many passes run.
+  const VecX prior_mean = priorMean(layout, config.model);
+  VecX params = prior_mean;
   PassOutput pass;
   for (int i = 0; i < config.passes; ++i) {
     // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
     // about the dead-reckoned trajectory of the previous pass's parameters.
     const bool feedback = i == 0 || !config.open_loop_refinement;
-    pass = runPass(imu, heading, still, config, params, feedback, options.keep_innovations, options.max_history_epochs);
+    pass = runPass(imu, heading, still, config, params, i == 0 ? VecX() : prior_mean, feedback,
+                   options.keep_innovations, options.max_history_epochs);
     const VecX sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
     const double change = ((pass.params - params).cwiseQuotient(sigma)).cwiseAbs().maxCoeff();
     params = pass.params;
@@ -188,7 +229,10 @@ CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector
   result.duration = imu.back().t - imu.front().t;
 
   const int n = layout.paramCount();
+  constexpr int p0 = StateLayout::kParamStart;
+  const int gravity = layout.paramOffset(ParamBlock::Gravity);
   result.converged.assign(n, false);
+  result.not_converged_reason.assign(n, "");
   result.convergence_time = VecX::Constant(n, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> t, x, s;
   for (const auto& e : result.history) t.push_back(e.t);
@@ -199,7 +243,25 @@ CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector
       x.push_back(e.params(j));
       s.push_back(e.sigmas(j));
     }
-    if (result.sigma(j) > config.converged_sigma_ratio * result.prior_sigma(j)) continue;
+    if (layout.mode(layout.params()[static_cast<std::size_t>(j)].block) == BlockMode::Consider) {
+      result.not_converged_reason[j] = "considered, not estimated";
+      continue;
+    }
+    if (result.sigma(j) > config.converged_sigma_ratio * result.prior_sigma(j)) {
+      result.not_converged_reason[j] = "sigma above " + std::to_string(config.converged_sigma_ratio) + " of the prior";
+      continue;
+    }
+    // A parameter whose variance is mostly gravity's (the accelerometer z bias when g is unknown) says
+    // more about the assumed gravity than about the sensor.
+    if (gravity >= 0 && j != gravity) {
+      const double p_jg = pass.P(p0 + j, p0 + gravity);
+      const double var_g = pass.P(p0 + gravity, p0 + gravity);
+      const double var = pass.P(p0 + j, p0 + j);
+      if (var_g > 0.0 && p_jg * p_jg / var_g > 0.5 * var) {
+        result.not_converged_reason[j] = kLimitedByGravity;
+        continue;
+      }
+    }
     result.converged[j] = true;
     result.convergence_time(j) = selfConvergenceTime(t, x, s, 2.0 * result.sigma(j));
   }

@@ -28,6 +28,13 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // fixed point: the recording's motion itself is not the model's.
 constexpr double kMotionAssumptionGap = 30.0;
 
+// A hypothesis states its noise: the diagnosis compares noise models, so the filter must not replace them
+// with densities measured on the data.
+FilterConfig pinned(FilterConfig f) {
+  f.noise.from_data = false;
+  return f;
+}
+
 // The data and the filter runs of one diagnosis.
 class Evaluator {
  public:
@@ -36,14 +43,17 @@ class Evaluator {
 
   double logLikelihood(const SensorHypothesis& h) {
     ++runs_;
-    return calibrate(removeKnownErrors(imu_, h.known), heading_, h.filter).log_likelihood;
+    return calibrate(removeKnownErrors(imu_, h.known), heading_, pinned(h.filter)).log_likelihood;
   }
   ModelGap gap(const SensorHypothesis& h) {
     ++runs_;
     const std::vector<ImuSample> data = removeKnownErrors(imu_, h.known);
     CalibrateOptions options;
     options.keep_innovations = true;
-    return modelGap(data, calibrate(data, heading_, h.filter, options), h);
+    const CalibrationResult r = calibrate(data, heading_, pinned(h.filter), options);
+    if (r.first_sample == 0) return modelGap(data, r, h);
+    // The calibration started at the first quiet stretch; its history pairs with the samples from there.
+    return modelGap(std::vector<ImuSample>(data.begin() + static_cast<std::ptrdiff_t>(r.first_sample), data.end()), r, h);
   }
   int runs() const { return runs_; }
 

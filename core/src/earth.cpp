@@ -7,11 +7,12 @@
 namespace imucal {
 
 double EarthModel::gravity() const {
-  if (!latitude_gravity) return units::kStandardGravity;
+  if (measured_gravity > 0.0) return measured_gravity + gravity_offset;
+  if (!latitude_gravity) return units::kStandardGravity + gravity_offset;
   // Somigliana's normal gravity on the WGS-84 ellipsoid with the free-air height correction.
   const double s2 = std::pow(std::sin(latitude), 2);
   const double g0 = 9.7803253359 * (1.0 + 0.00193185265241 * s2) / std::sqrt(1.0 - 0.00669437999013 * s2);
-  return g0 - 3.086e-6 * height;
+  return g0 - 3.086e-6 * height + gravity_offset;
 }
 
 Vec3 EarthModel::gravityNed() const { return Vec3(0.0, 0.0, gravity()); }

@@ -21,7 +21,9 @@ Effect scale(const std::string& sensor, int axis) {
                         : (gyro ? std::string("a turn about ") + kAxes[axis] : std::string("a tilt so ") + kAxes[axis] + " sees +g and -g");
   e.get = [gyro, axis](const SensorHypothesis& h) { return scalar((gyro ? h.known.gyro : h.known.accel).scale(axis)); };
   e.set = [gyro, axis](SensorHypothesis& h, const VecX& v) { (gyro ? h.known.gyro : h.known.accel).scale(axis) = v(0); };
-  e.estimated_by_filter = [gyro](const FilterConfig& f) { return gyro ? f.model.gyro_scale : f.model.accel_scale; };
+  e.estimated_by_filter = [gyro](const FilterConfig& f) {
+    return f.model.estimates(gyro ? ParamBlock::GyroScale : ParamBlock::AccelScale);
+  };
   return e;
 }
 
@@ -68,8 +70,15 @@ std::vector<Effect> effectLibrary() {
     e.step = 0.03;
     e.plausible = 0.1;
     e.reveals = "a turn about a horizontal axis (x or y) for the component along the turn axis";
-    e.get = [](const SensorHypothesis& h) { return VecX(h.filter.measurements.lever_arm); };
-    e.set = [](SensorHypothesis& h, const VecX& v) { h.filter.measurements.lever_arm = v.head<3>(); };
+    e.estimated_by_filter = [](const FilterConfig& f) { return f.model.mode(ParamBlock::LeverArm) != BlockMode::Off; };
+    e.get = [](const SensorHypothesis& h) {
+      VecX r(3);
+      for (int i = 0; i < 3; ++i) r(i) = h.filter.model.mean({ParamBlock::LeverArm, i});
+      return r;
+    };
+    e.set = [](SensorHypothesis& h, const VecX& v) {
+      for (int i = 0; i < 3; ++i) h.filter.model.setMean({ParamBlock::LeverArm, i}, v(i));
+    };
     lib.push_back(e);
   }
   for (const char* sensor : {"gyro", "accel"})

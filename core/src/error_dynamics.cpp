@@ -23,18 +23,37 @@ void ErrorDynamics::applyF(const Linearization& lin, const StateMat& X, StateMat
 
   out.middleRows<3>(L::kPos) = X.middleRows<3>(L::kVel);
   out.middleRows<3>(L::kVel).noalias() = -f_n_skew * X.middleRows<3>(L::kAtt);
-  // d(corrected)/d(bias) = -1/(1+s) and d(corrected)/d(scale) = -corrected/(1+s), per axis.
-  const Mat3 c_a = c * lin.accel_gain_inv.asDiagonal();
-  const Mat3 c_g = c * lin.gyro_gain_inv.asDiagonal();
+  const Mat3 c_a = c * lin.accel_gain_inv;
+  const Mat3 c_g = c * lin.gyro_gain_inv;
   out.middleRows<3>(L::kVel).noalias() -= c_a * X.middleRows<3>(L::kAccelBias);
   out.middleRows<3>(L::kAtt).noalias() = -c_g * X.middleRows<3>(L::kGyroBias);
-  if (layout_.accel_scale >= 0) {
-    const Mat3 c_f = c_a * lin.f_b.asDiagonal();
-    out.middleRows<3>(L::kVel).noalias() -= c_f * X.middleRows<3>(layout_.accel_scale);
-  }
-  if (layout_.gyro_scale >= 0) {
-    const Mat3 c_w = c_g * lin.w_b.asDiagonal();
-    out.middleRows<3>(L::kAtt).noalias() -= c_w * X.middleRows<3>(layout_.gyro_scale);
+  for (const auto& info : paramBlocks()) {
+    const int off = layout_.offset(info.block);
+    if (off < 0) continue;
+    switch (info.block) {
+      case ParamBlock::AccelScale:
+      case ParamBlock::AccelMisalignment:
+        out.middleRows<3>(L::kVel).noalias() +=
+            (c * blockJacobian(info.block, lin.accel_gain_inv, lin.f_b)) * X.middleRows(off, info.size());
+        break;
+      case ParamBlock::GyroScale:
+      case ParamBlock::GyroMisalignment:
+        out.middleRows<3>(L::kAtt).noalias() +=
+            (c * blockJacobian(info.block, lin.gyro_gain_inv, lin.w_b)) * X.middleRows(off, info.size());
+        break;
+      case ParamBlock::GyroGSensitivity:
+        out.middleRows<3>(L::kAtt).noalias() +=
+            (c * blockJacobian(info.block, lin.gyro_gain_inv, lin.f_b)) * X.middleRows(off, info.size());
+        break;
+      case ParamBlock::Gravity:
+        // Gravity is (0, 0, g) in NED: its magnitude error accelerates straight down.
+        out.row(L::kVel + 2) += X.row(off);
+        break;
+      case ParamBlock::AccelBias:
+      case ParamBlock::GyroBias:
+      case ParamBlock::LeverArm:  // constant, enters only the pseudo-observations
+        break;
+    }
   }
   if (earth_.earth_rate) {
     const Mat3 w_skew = skew(earth_.earthRateNed());
@@ -73,6 +92,19 @@ void ErrorDynamics::propagate(StateMat& P, const Linearization& lin, double dt) 
   P.diagonal().segment<3>(L::kGyroBias).array() += q_bg_ * dt;
 }
 
+MatX blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value) {
+  const ParamBlockInfo& info = blockInfo(block);
+  MatX j = MatX::Zero(3, info.size());
+  for (int k = 0; k < info.size(); ++k) {
+    const auto [row, col] = matrixIndex({block, k});
+    // corrected = G^-1 (m - ...): a term of G at (r, c) moves it by -G^-1 e_r v_c; a scale is the term (k, k).
+    const int r = row < 0 ? k : row;
+    const int c = row < 0 ? k : col;
+    j.col(k) = -gain_inv.col(r) * value(c);
+  }
+  return j;
+}
+
 double headingOf(const Mat3& c_bn) { return std::atan2(c_bn(1, 0), c_bn(0, 0)); }
 
 void headingJacobian(const Mat3& c, const StateLayout& layout, StateVec& h) {
@@ -86,10 +118,11 @@ void headingJacobian(const Mat3& c, const StateLayout& layout, StateVec& h) {
 
 namespace {
 
-void josephFromColumn(StateMat& P, const StateVec& a, double s, StateVec& K) {
+void josephFromColumn(StateMat& P, const StateVec& a, double s, StateVec& K, const StateVec* mask) {
   // With a = P h and s = h^T P h + r, (I - K h^T) P (I - K h^T)^T + r K K^T expands to
-  // P - K a^T - a K^T + s K K^T: the Joseph form in O(n^2).
+  // P - K a^T - a K^T + s K K^T for any gain K: the Joseph form in O(n^2).
   K = a / s;
+  if (mask != nullptr) K.array() *= mask->array();
   P.noalias() -= K * a.transpose();
   P.noalias() -= a * K.transpose();
   P.noalias() += s * (K * K.transpose());
@@ -98,16 +131,16 @@ void josephFromColumn(StateMat& P, const StateVec& a, double s, StateVec& K) {
 
 }  // namespace
 
-void josephScalarUpdate(StateMat& P, const StateVec& h, double r, StateVec& K, double& s) {
+void josephScalarUpdate(StateMat& P, const StateVec& h, double r, StateVec& K, double& s, const StateVec* mask) {
   const StateVec a = P * h;
   s = h.dot(a) + r;
-  josephFromColumn(P, a, s, K);
+  josephFromColumn(P, a, s, K, mask);
 }
 
-void josephSelectorUpdate(StateMat& P, int i, double r, StateVec& K, double& s) {
+void josephSelectorUpdate(StateMat& P, int i, double r, StateVec& K, double& s, const StateVec* mask) {
   const StateVec a = P.col(i);
   s = a(i) + r;
-  josephFromColumn(P, a, s, K);
+  josephFromColumn(P, a, s, K, mask);
 }
 
 }  // namespace imucal

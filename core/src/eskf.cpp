@@ -9,23 +9,45 @@
 namespace imucal {
 
 Eskf::Eskf(const FilterConfig& config)
-    : config_(config), layout_(StateLayout::make(config.model)), dynamics_(layout_, config) {
+    : config_(config), layout_(StateLayout::make(config.model)), earth_(config.earth), dynamics_(layout_, config) {
   params_ = VecX::Zero(layout_.paramCount());
   P_ = StateMat::Identity(layout_.size, layout_.size);
   dx_ = StateVec::Zero(layout_.size);
+  const std::vector<bool> updatable = layout_.updatable();
+  update_mask_ = StateVec::Ones(layout_.size);
+  for (int i = 0; i < layout_.size; ++i) {
+    if (updatable[static_cast<std::size_t>(i)]) continue;
+    update_mask_(i) = 0.0;
+    has_considered_ = true;
+  }
+  refreshModel();
 }
 
-void Eskf::initialize(const ImuSample& first_raw, const NavState& nav, const VecX& params, const StateMat& P0) {
+void Eskf::initialize(const ImuSample& first_raw, const NavState& nav, const VecX& params, const StateMat& P0,
+                      const VecX& prior_mean) {
   if (params.size() != layout_.paramCount()) throw std::invalid_argument("Eskf::initialize: wrong parameter count");
   if (P0.rows() != layout_.size || P0.cols() != layout_.size) {
     throw std::invalid_argument("Eskf::initialize: covariance size does not match the state layout");
+  }
+  if (prior_mean.size() != 0 && prior_mean.size() != params.size()) {
+    throw std::invalid_argument("Eskf::initialize: prior mean size does not match the parameters");
   }
   last_raw_ = first_raw;
   nav_ = nav;
   params_ = params;
   P_ = P0;
   dx_.setZero(layout_.size);
+  if (prior_mean.size() != 0) dx_.segment(StateLayout::kParamStart, layout_.paramCount()) = prior_mean - params;
   log_likelihood_ = 0.0;
+  refreshModel();
+}
+
+void Eskf::refreshModel() {
+  model_ = toCalibrationParams(layout_, params_, config_.model);
+  accel_gain_inv_ = model_.imu.accel.gainMatrix().inverse();
+  gyro_gain_inv_ = model_.imu.gyro.gainMatrix().inverse();
+  earth_ = config_.earth;
+  earth_.gravity_offset += model_.gravity_error;
 }
 
 void Eskf::record(int channel, double y, double s) {
@@ -37,14 +59,8 @@ ImuSample Eskf::corrected(const ImuSample& raw) const {
   using L = StateLayout;
   constexpr int p0 = L::kParamStart;
   ImuSample s = raw;
-  s.accel = raw.accel - params_.segment<3>(L::kAccelBias - p0);
-  s.gyro = raw.gyro - params_.segment<3>(L::kGyroBias - p0);
-  if (layout_.accel_scale >= 0) {
-    s.accel = s.accel.cwiseQuotient((Vec3::Ones() + params_.segment<3>(layout_.accel_scale - p0)));
-  }
-  if (layout_.gyro_scale >= 0) {
-    s.gyro = s.gyro.cwiseQuotient((Vec3::Ones() + params_.segment<3>(layout_.gyro_scale - p0)));
-  }
+  s.accel = accel_gain_inv_ * (raw.accel - params_.segment<3>(L::kAccelBias - p0));
+  s.gyro = gyro_gain_inv_ * (raw.gyro - params_.segment<3>(L::kGyroBias - p0) - model_.imu.gyro_g_sensitivity * s.accel);
   return s;
 }
 
@@ -54,19 +70,14 @@ void Eskf::predict(const ImuSample& raw) {
   const ImuSample a = corrected(last_raw_);
   const ImuSample b = corrected(raw);
   const Quat q0 = nav_.q_nb;
-  propagateNav(nav_, a, b, config_.earth);
+  propagateNav(nav_, a, b, earth_);
   Linearization lin;
   lin.c_bn = q0.slerp(0.5, nav_.q_nb).toRotationMatrix();
-  lin.f_b = config_.gravity_linearization ? Vec3(-(lin.c_bn.transpose() * config_.earth.gravityNed()))
+  lin.f_b = config_.gravity_linearization ? Vec3(-(lin.c_bn.transpose() * earth_.gravityNed()))
                                           : Vec3(0.5 * (a.accel + b.accel));
   lin.w_b = 0.5 * (a.gyro + b.gyro);
-  constexpr int p0 = StateLayout::kParamStart;
-  if (layout_.accel_scale >= 0) {
-    lin.accel_gain_inv = (Vec3::Ones() + params_.segment<3>(layout_.accel_scale - p0)).cwiseInverse();
-  }
-  if (layout_.gyro_scale >= 0) {
-    lin.gyro_gain_inv = (Vec3::Ones() + params_.segment<3>(layout_.gyro_scale - p0)).cwiseInverse();
-  }
+  lin.accel_gain_inv = accel_gain_inv_;
+  lin.gyro_gain_inv = gyro_gain_inv_;
   if (!feedback_) {
     StateMat fdx;
     const StateMat dx = dx_;
@@ -80,7 +91,7 @@ void Eskf::predict(const ImuSample& raw) {
 void Eskf::scalarSelector(int index, double innovation, double variance, double& nis) {
   double s = 0.0;
   const double y = innovation - dx_(index);
-  josephSelectorUpdate(P_, index, variance, gain_, s);
+  josephSelectorUpdate(P_, index, variance, gain_, s, has_considered_ ? &update_mask_ : nullptr);
   dx_ += gain_ * y;
   nis += y * y / s;
   record(channel_, y, s);
@@ -89,14 +100,15 @@ void Eskf::scalarSelector(int index, double innovation, double variance, double&
 void Eskf::scalarRow(const StateVec& h, double innovation, double variance, double& nis) {
   double s = 0.0;
   const double y = innovation - h.dot(dx_);
-  josephScalarUpdate(P_, h, variance, gain_, s);
+  josephScalarUpdate(P_, h, variance, gain_, s, has_considered_ ? &update_mask_ : nullptr);
   dx_ += gain_ * y;
   nis += y * y / s;
   record(channel_, y, s);
 }
 
 double Eskf::updateCentre(int channel0, const Vec3& predicted, const Mat3& att_jacobian, const Mat3* gyro_bias_jacobian,
-                          double sigma) {
+                          const Mat3& lever_jacobian, double sigma) {
+  const int lever = layout_.offset(ParamBlock::LeverArm);
   using L = StateLayout;
   const bool velocity = channel0 == Innovation::VelocityX;
   double nis = 0.0;
@@ -105,6 +117,7 @@ double Eskf::updateCentre(int channel0, const Vec3& predicted, const Mat3& att_j
     h_((velocity ? L::kVel : L::kPos) + i) = 1.0;
     h_.segment<3>(L::kAtt) = att_jacobian.row(i).transpose();
     if (gyro_bias_jacobian != nullptr) h_.segment<3>(L::kGyroBias) = gyro_bias_jacobian->row(i).transpose();
+    if (lever >= 0) h_.segment<3>(lever) = lever_jacobian.row(i).transpose();
     channel_ = channel0 + i;
     scalarRow(h_, -predicted(i), sigma * sigma, nis);
   }
@@ -112,15 +125,16 @@ double Eskf::updateCentre(int channel0, const Vec3& predicted, const Mat3& att_j
 }
 
 double Eskf::updateZeroVelocity(double sigma) {
-  const Vec3& r = config_.measurements.lever_arm;
-  if (!r.isZero()) {
+  const Vec3& r = model_.lever_arm;
+  if (!r.isZero() || layout_.has(ParamBlock::LeverArm)) {
     // Centre velocity v - C (w x r); to first order in the errors it is
-    // v + dv - C (w x r) + [C (w x r) x] phi - C [r x] dbg (the gyro bias error enters through w).
+    // v + dv - C (w x r) + [C (w x r) x] phi - C [r x] dbg - C [w x] dr (the gyro bias error enters
+    // through w).
     const Mat3 c = nav_.q_nb.toRotationMatrix();
-    const Vec3 w = corrected(last_raw_).gyro - c.transpose() * config_.earth.earthRateNed();
+    const Vec3 w = corrected(last_raw_).gyro - c.transpose() * earth_.earthRateNed();
     const Vec3 u = leverArmVelocity(c, w, r);
-    const Mat3 bias_jacobian = -c * skew(r);
-    return updateCentre(Innovation::VelocityX, nav_.v - u, skew(u), &bias_jacobian, sigma);
+    const Mat3 bias_jacobian = -c * skew(r) * gyro_gain_inv_;
+    return updateCentre(Innovation::VelocityX, nav_.v - u, skew(u), &bias_jacobian, -c * skew(w), sigma);
   }
   double nis = 0.0;
   for (int i = 0; i < 3; ++i) {
@@ -131,12 +145,12 @@ double Eskf::updateZeroVelocity(double sigma) {
 }
 
 double Eskf::updateConstantPosition(const Vec3& p_ref, double sigma) {
-  const Vec3& r = config_.measurements.lever_arm;
-  if (!r.isZero()) {
-    // Centre position p - C r = p + dp - C r + [C r x] phi.
+  const Vec3& r = model_.lever_arm;
+  if (!r.isZero() || layout_.has(ParamBlock::LeverArm)) {
+    // Centre position p - C r = p + dp - C r + [C r x] phi - C dr.
     const Mat3 c = nav_.q_nb.toRotationMatrix();
     const Vec3 u = leverArmPosition(c, r);
-    return updateCentre(Innovation::PositionX, nav_.p - u - p_ref, skew(u), nullptr, sigma);
+    return updateCentre(Innovation::PositionX, nav_.p - u - p_ref, skew(u), nullptr, -c, sigma);
   }
   double nis = 0.0;
   for (int i = 0; i < 3; ++i) {
@@ -157,7 +171,7 @@ Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double ga
   out.nis = y * y / s_pred;
   if (gate_sigma > 0.0 && out.nis > gate_sigma * gate_sigma) return out;
   double s = 0.0;
-  josephScalarUpdate(P_, h_, r, gain_, s);
+  josephScalarUpdate(P_, h_, r, gain_, s, has_considered_ ? &update_mask_ : nullptr);
   dx_ += gain_ * y;
   out.accepted = true;
   record(Innovation::Heading, y, s_pred);
@@ -184,6 +198,7 @@ void Eskf::correct() {
   nav_.q_nb = (rotationVectorToQuat(dphi) * nav_.q_nb).normalized();
   params_ += dx_.segment(L::kParamStart, layout_.paramCount());
   dx_.setZero();
+  refreshModel();
 
   // Reset Jacobian of the attitude block. The error model treats phi's horizontal part as the physical
   // tilt (the angle between true and estimated vertical). A yaw change of the estimate leaves both

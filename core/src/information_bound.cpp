@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "imucal/core/initial_alignment.hpp"
+#include "imucal/core/rotation.hpp"
 
 namespace imucal {
 
@@ -19,8 +20,9 @@ Linearization linearizeBetween(const TrajectoryPoint& a, const TrajectoryPoint& 
 }  // namespace
 
 BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std::vector<double>& heading_times,
-                             const FilterConfig& config) {
+                             const FilterConfig& given) {
   if (traj.size() < 2) throw std::invalid_argument("informationBound: need at least two trajectory points");
+  const FilterConfig config = effectiveConfig(given);
   const StateLayout layout = StateLayout::make(config.model);
   const ErrorDynamics dynamics(layout, config);
   const auto& m = config.measurements;
@@ -36,11 +38,22 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
   }
   const double yaw_var = folded > 0 ? m.heading_sigma * m.heading_sigma / folded : config.prior.yaw * config.prior.yaw;
   StateMat P = priorCovariance(config, layout, yaw_var);
+  correlateStartWithLeverArm(P, layout, traj.front().q_nb.toRotationMatrix());
 
   BoundResult out;
   out.names = layout.paramNames();
   StateVec K, hrow;
   double s = 0.0;
+  // Considered parameters are never updated, as in the filter.
+  const std::vector<bool> updatable = layout.updatable();
+  StateVec mask_values = StateVec::Ones(layout.size);
+  bool considered = false;
+  for (int i = 0; i < layout.size; ++i) {
+    if (updatable[static_cast<std::size_t>(i)]) continue;
+    mask_values(i) = 0.0;
+    considered = true;
+  }
+  const StateVec* mask = considered ? &mask_values : nullptr;
   const auto record = [&](double t) {
     out.t.push_back(t);
     out.sigma_history.push_back(P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt());
@@ -56,16 +69,29 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
       t = th;
       const double w = (th - traj[k - 1].t) / (traj[k].t - traj[k - 1].t);
       headingJacobian(traj[k - 1].q_nb.slerp(w, traj[k].q_nb).toRotationMatrix(), layout, hrow);
-      josephScalarUpdate(P, hrow, m.heading_sigma * m.heading_sigma, K, s);
+      josephScalarUpdate(P, hrow, m.heading_sigma * m.heading_sigma, K, s, mask);
     }
     if (traj[k].t > t) dynamics.propagate(P, lin, traj[k].t - t);
+    // The truth's IMU sits at the centre; an estimated lever arm still enters the centre's rows, as in the
+    // filter: velocity -C [w x] dr, position -C dr.
+    const int lever = layout.offset(ParamBlock::LeverArm);
+    const Mat3 c = traj[k].q_nb.toRotationMatrix();
+    const auto update = [&](int index, const Mat3& lever_jacobian, int row, double sigma) {
+      if (lever < 0) {
+        josephSelectorUpdate(P, index, sigma * sigma, K, s, mask);
+        return;
+      }
+      hrow.setZero(layout.size);
+      hrow(index) = 1.0;
+      hrow.segment<3>(lever) = lever_jacobian.row(row).transpose();
+      josephScalarUpdate(P, hrow, sigma * sigma, K, s, mask);
+    };
     if (m.zero_velocity) {
-      for (int i = 0; i < 3; ++i) josephSelectorUpdate(P, StateLayout::kVel + i, m.zero_velocity_sigma * m.zero_velocity_sigma, K, s);
+      const Mat3 jv = -c * skew(traj[k].w_b);
+      for (int i = 0; i < 3; ++i) update(StateLayout::kVel + i, jv, i, m.zero_velocity_sigma);
     }
     if (m.constant_position) {
-      for (int i = 0; i < 3; ++i) {
-        josephSelectorUpdate(P, StateLayout::kPos + i, m.constant_position_sigma * m.constant_position_sigma, K, s);
-      }
+      for (int i = 0; i < 3; ++i) update(StateLayout::kPos + i, -c, i, m.constant_position_sigma);
     }
     record(traj[k].t);
   }

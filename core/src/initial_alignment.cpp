@@ -1,7 +1,9 @@
 #include "imucal/core/initial_alignment.hpp"
 
+#include <algorithm>
 #include <cmath>
 
+#include "imucal/core/param_vector.hpp"
 #include "imucal/core/rotation.hpp"
 
 namespace imucal {
@@ -17,26 +19,74 @@ StateMat priorCovariance(const FilterConfig& config, const StateLayout& layout, 
   setBlock(L::kVel, p.velocity);
   setBlock(L::kAtt, p.tilt);
   P(L::kAtt + 2, L::kAtt + 2) = yaw_variance;
-  setBlock(L::kAccelBias, p.accel_bias);
-  setBlock(L::kGyroBias, p.gyro_bias);
-  if (layout.accel_scale >= 0) setBlock(layout.accel_scale, p.accel_scale);
-  if (layout.gyro_scale >= 0) setBlock(layout.gyro_scale, p.gyro_scale);
+  for (const auto& info : paramBlocks()) {
+    if (!layout.has(info.block)) continue;
+    const double sigma = config.model[info.block].sigma;
+    P.diagonal().segment(layout.offset(info.block), info.size()).setConstant(sigma * sigma);
+  }
   return P;
+}
+
+void correlateStartWithLeverArm(StateMat& P, const StateLayout& layout, const Mat3& c_bn) {
+  const int lever = layout.offset(ParamBlock::LeverArm);
+  if (lever < 0) return;
+  const Mat3 p_rr = P.block<3, 3>(lever, lever);
+  P.block<3, 3>(StateLayout::kPos, StateLayout::kPos) += c_bn * p_rr * c_bn.transpose();
+  P.block<3, 3>(StateLayout::kPos, lever) = c_bn * p_rr;
+  P.block<3, 3>(lever, StateLayout::kPos) = (c_bn * p_rr).transpose();
+}
+
+AlignmentWindow findAlignmentWindow(const std::vector<ImuSample>& imu, double duration) {
+  struct Window {
+    std::size_t first;
+    double gyro, accel;
+  };
+  std::vector<Window> windows;
+  std::size_t first = 0;
+  while (first < imu.size()) {
+    Eigen::Matrix<double, 6, 1> sum = Eigen::Matrix<double, 6, 1>::Zero(), sum_sq = sum;
+    std::size_t end = first;
+    for (; end < imu.size() && imu[end].t - imu[first].t <= duration; ++end) {
+      Eigen::Matrix<double, 6, 1> x;
+      x << imu[end].accel, imu[end].gyro;
+      sum += x;
+      sum_sq += x.cwiseAbs2();
+    }
+    const double n = static_cast<double>(end - first);
+    if (end - first < 2 || (end == imu.size() && imu[end - 1].t - imu[first].t < 0.9 * duration && !windows.empty())) break;
+    const Eigen::Matrix<double, 6, 1> var = (sum_sq / n - (sum / n).cwiseAbs2()).cwiseMax(0.0);
+    windows.push_back({first, std::sqrt(var.tail<3>().maxCoeff()), std::sqrt(var.head<3>().maxCoeff())});
+    // The next window starts half a window later.
+    std::size_t next = first;
+    while (next < imu.size() && imu[next].t - imu[first].t < 0.5 * duration) ++next;
+    if (next == first) ++next;
+    first = next;
+  }
+  AlignmentWindow out;
+  if (windows.empty()) return out;
+  double quietest = windows.front().gyro;
+  for (const auto& w : windows) quietest = std::min(quietest, w.gyro);
+  for (const auto& w : windows) {
+    if (w.gyro > 1.5 * quietest) continue;
+    out.first = w.first;
+    out.gyro_spread = w.gyro;
+    out.accel_spread = w.accel;
+    break;
+  }
+  out.usable = out.gyro_spread < 0.1 && out.accel_spread < 0.5;
+  return out;
 }
 
 InitialAlignment alignInitialState(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
                                    const FilterConfig& config, const VecX& params, const StateLayout& layout) {
   const double t0 = imu.front().t;
   const double t_end = t0 + config.alignment_time;
-  const VecX& x = params;
-  constexpr int p0 = StateLayout::kParamStart;
+  const TriadErrors accel = toCalibrationParams(layout, params, config.model).imu.accel;
   Vec3 f_sum = Vec3::Zero();
   int n = 0;
   for (const auto& s : imu) {
     if (s.t > t_end && n > 0) break;
-    Vec3 f = s.accel - x.segment<3>(StateLayout::kAccelBias - p0);
-    if (layout.accel_scale >= 0) f = f.cwiseQuotient(Vec3::Ones() + x.segment<3>(layout.accel_scale - p0));
-    f_sum += f;
+    f_sum += accel.remove(s.accel);
     ++n;
   }
   const Vec3 level = levelFromSpecificForce(f_sum / n);

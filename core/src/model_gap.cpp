@@ -1,9 +1,11 @@
 #include "imucal/core/model_gap.hpp"
 
+
 #include <algorithm>
 #include <cmath>
 
 #include "imucal/core/lever_arm.hpp"
+#include "imucal/core/param_vector.hpp"
 #include "imucal/core/rotation.hpp"
 
 namespace imucal {
@@ -113,17 +115,14 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
   // Re-simulated IMU data over blocks. The motion: the filter's attitude and the corrected gyro's rate,
   // about a centre that does not move; the data through the calibrated model (bias, scale states).
   const StateLayout& layout = result.layout;
-  constexpr int p0 = StateLayout::kParamStart;
   // Each epoch's attitude goes with that epoch's parameter estimates (the filter's own pairing; the final
   // estimates with early attitudes would mix tilt and horizontal bias from different times).
   const auto errorsAt = [&](std::size_t k, TriadErrors& accel, TriadErrors& gyro) {
-    const VecX& x = history[k].params;
-    accel.bias = x.segment<3>(StateLayout::kAccelBias - p0);
-    gyro.bias = x.segment<3>(StateLayout::kGyroBias - p0);
-    if (layout.accel_scale >= 0) accel.scale = x.segment<3>(layout.accel_scale - p0);
-    if (layout.gyro_scale >= 0) gyro.scale = x.segment<3>(layout.gyro_scale - p0);
+    const CalibrationParams p = toCalibrationParams(layout, history[k].params, model.filter.model);
+    accel = p.imu.accel;
+    gyro = p.imu.gyro;
   };
-  const Vec3 r = model.filter.measurements.lever_arm;
+  const Vec3 r = toCalibrationParams(layout, result.estimate, model.filter.model).lever_arm;
   const Vec3 g_n = model.filter.earth.gravityNed();
   const Vec3 w_ie = model.filter.earth.earthRateNed();
   const double accel_white = std::max(model.filter.noise.accel_white, 1e-12);

@@ -7,6 +7,8 @@
 
 #include "imucal/lcm_decode.hpp"
 
+#include "imucal/core/param_registry.hpp"
+
 namespace imucal::daemon {
 
 namespace {
@@ -179,24 +181,32 @@ imucal::calibration_t LcmNode::toMessage(const SensorReport& r, std::int64_t uti
   m.sigmas = c.sigmas;
   m.converged.assign(c.converged.begin(), c.converged.end());
   m.convergence_time_s = c.convergence_time_s;
+  // The quick-access fields, by the registry's names (a stored name it does not know stays in the arrays).
   for (std::size_t i = 0; i < c.names.size(); ++i) {
-    const std::string& n = c.names[i];
-    const int axis = n.back() - 'x';
-    if (axis < 0 || axis > 2) continue;
-    if (n.rfind("accel_bias_", 0) == 0) {
-      m.accel_bias[axis] = c.values[i];
-      m.accel_bias_sigma[axis] = c.sigmas[i];
-    } else if (n.rfind("gyro_bias_", 0) == 0) {
-      m.gyro_bias[axis] = c.values[i];
-      m.gyro_bias_sigma[axis] = c.sigmas[i];
-    } else if (n.rfind("accel_scale_", 0) == 0) {
-      m.scale_estimated = true;
-      m.accel_scale[axis] = c.values[i];
-      m.accel_scale_sigma[axis] = c.sigmas[i];
-    } else if (n.rfind("gyro_scale_", 0) == 0) {
-      m.scale_estimated = true;
-      m.gyro_scale[axis] = c.values[i];
-      m.gyro_scale_sigma[axis] = c.sigmas[i];
+    const auto ref = findParam(c.names[i]);
+    if (!ref) continue;
+    const int axis = ref->component;
+    switch (ref->block) {
+      case ParamBlock::AccelBias:
+        m.accel_bias[axis] = c.values[i];
+        m.accel_bias_sigma[axis] = c.sigmas[i];
+        break;
+      case ParamBlock::GyroBias:
+        m.gyro_bias[axis] = c.values[i];
+        m.gyro_bias_sigma[axis] = c.sigmas[i];
+        break;
+      case ParamBlock::AccelScale:
+        m.scale_estimated = true;
+        m.accel_scale[axis] = c.values[i];
+        m.accel_scale_sigma[axis] = c.sigmas[i];
+        break;
+      case ParamBlock::GyroScale:
+        m.scale_estimated = true;
+        m.gyro_scale[axis] = c.values[i];
+        m.gyro_scale_sigma[axis] = c.sigmas[i];
+        break;
+      default:
+        break;
     }
   }
   return m;

@@ -40,12 +40,17 @@ SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<
     out.failure = "refused: the model does not describe this session: " + problems.front();
     return out;
   }
-  // Accelerometer and x/y gyro biases must converge; gyro z needs heading and may stay open.
-  for (std::size_t j = 0; j < 5; ++j) {
-    if (!result.converged[j]) {
-      out.failure = "session did not converge (" + result.names[j] + ")";
-      return out;
-    }
+  // Every bias must converge but what a turn about the vertical cannot settle by itself: the vertical gyro
+  // bias (it needs heading) and the accelerometer bias along an unknown gravity. Each parameter's own flag
+  // goes out with the calibration.
+  const auto& refs = result.layout.params();
+  for (std::size_t j = 0; j < refs.size(); ++j) {
+    const bool bias = refs[j].block == ParamBlock::AccelBias || refs[j].block == ParamBlock::GyroBias;
+    if (!bias || result.converged[j]) continue;
+    if (refs[j].block == ParamBlock::GyroBias && refs[j].component == 2) continue;
+    if (result.not_converged_reason[j] == kLimitedByGravity) continue;
+    out.failure = "session did not converge (" + result.names[j] + ": " + result.not_converged_reason[j] + ")";
+    return out;
   }
   StoredCalibration c;
   c.sensor_id = sensor_id;

@@ -1,8 +1,10 @@
+#include <cmath>
 #include <stdexcept>
 
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/config_sections.hpp"
+#include "imucal/io/param_units.hpp"
 #include "imucal/io/yaml_fields.hpp"
 
 namespace imucal::io {
@@ -39,6 +41,15 @@ AxisMap readAxes(YamlSection& s, const std::string& key, const AxisMap& fallback
   } catch (const std::invalid_argument& e) {
     s.fail(key, e.what());
   }
+}
+
+BlockMode readBlockMode(YamlSection& s, const std::string& key, BlockMode fallback) {
+  const char* names[] = {"off", "estimate", "consider"};
+  const std::string value = s.text(key, names[static_cast<int>(fallback)]);
+  if (value == "estimate" || value == "true") return BlockMode::Estimate;
+  if (value == "off" || value == "false") return BlockMode::Off;
+  if (value == "consider") return BlockMode::Consider;
+  s.fail(key, "unknown value '" + value + "' (expected estimate, consider or off; true = estimate, false = off)");
 }
 
 // `retime: uniform` or `retime: logged` (keep the stamps as written).
@@ -127,18 +138,26 @@ NoiseConfig readNoise(YamlSection s, NoiseConfig n) {
   n.gyro_bias_walk = s.number("gyro_bias_walk_deg_per_h_per_sqrt_h", n.gyro_bias_walk / units::deg_per_h_per_sqrt_h,
                               Range::nonNegative()) *
                      units::deg_per_h_per_sqrt_h;
+  n.from_data = s.boolean("from_data", n.from_data);
   s.finish();
   return n;
 }
 
-PriorConfig readPrior(YamlSection s, PriorConfig p) {
+// prior: {<block>_<unit>: 1-sigma} for every registry block (accel_bias_ug, gyro_misalignment_mrad...), next
+// to the navigation states' keys.
+void readParamPriors(YamlSection& s, ModelOptions& model) {
+  for (const auto& info : paramBlocks()) {
+    const ParamUnit u = paramUnit(info.block);
+    BlockSettings& b = model[info.block];
+    b.sigma = s.number(info.id + "_" + u.suffix, b.sigma / u.factor, Range::positive()) * u.factor;
+  }
+}
+
+PriorConfig readPrior(YamlSection s, PriorConfig p, ModelOptions& model) {
+  readParamPriors(s, model);
   const Range positive = Range::positive();
   p.tilt = s.number("tilt_deg", p.tilt / deg, positive) * deg;
   p.yaw = s.number("yaw_deg", p.yaw / deg, positive) * deg;
-  p.accel_bias = s.number("accel_bias_mg", p.accel_bias / units::milli_g, positive) * units::milli_g;
-  p.gyro_bias = s.number("gyro_bias_deg_per_h", p.gyro_bias / units::deg_per_h, positive) * units::deg_per_h;
-  p.accel_scale = s.number("accel_scale_ppm", p.accel_scale / units::ppm, positive) * units::ppm;
-  p.gyro_scale = s.number("gyro_scale_ppm", p.gyro_scale / units::ppm, positive) * units::ppm;
   p.position = s.number("position_m", p.position, positive);
   p.velocity = s.number("velocity_m_per_s", p.velocity, positive);
   s.finish();
@@ -154,11 +173,32 @@ void readMeasurements(YamlSection s, MeasurementConfig& m) {
   s.finish();
 }
 
+// model: {<block>: estimate | consider | off} (true / false for estimate / off) for every registry block.
 ModelOptions readModel(YamlSection s, ModelOptions o) {
-  o.accel_scale = s.boolean("accel_scale", o.accel_scale);
-  o.gyro_scale = s.boolean("gyro_scale", o.gyro_scale);
+  for (const auto& info : paramBlocks()) {
+    BlockSettings& b = o[info.block];
+    b.mode = readBlockMode(s, info.id, b.mode);
+  }
   s.finish();
   return o;
+}
+
+// parameters: {<parameter>_<unit>: value} sets the prior mean of any parameter (accel_bias_z_ug: 1200,
+// gyro_misalignment_zx_mrad: 2); with its block off the value is applied as known (pinned).
+void readParameterValues(YamlSection s, ModelOptions& o) {
+  for (const auto& info : paramBlocks()) {
+    const ParamUnit u = paramUnit(info.block);
+    for (int c = 0; c < info.size(); ++c) {
+      const ParamRef ref{info.block, c};
+      const std::string key = ref.name() + "_" + u.suffix;
+      const double plausible = info.plausible / u.factor;
+      const double v = s.number(key, o.mean(ref) / u.factor,
+                                {[plausible](double x) { return std::abs(x) <= plausible; },
+                                 "is beyond any consumer sensor (|value| <= " + configNumber(plausible) + ")"});
+      o.setMean(ref, v * u.factor);
+    }
+  }
+  s.finish();
 }
 
 void readFilter(YamlSection s, FilterConfig& f) {
@@ -180,9 +220,10 @@ CalibrateConfig calibrateConfigFrom(YamlSection top) {
   c.heading = readHeadingSection(top.section("heading"), c.filter.measurements);
   readMagnetometer(top.section("magnetometer"), c.mag, c.mag_heading);
   c.filter.noise = readNoise(top.section("noise"), c.filter.noise);
-  c.filter.prior = readPrior(top.section("prior"), c.filter.prior);
+  c.filter.prior = readPrior(top.section("prior"), c.filter.prior, c.filter.model);
   readMeasurements(top.section("measurements"), c.filter.measurements);
   c.filter.model = readModel(top.section("model"), c.filter.model);
+  readParameterValues(top.section("parameters"), c.filter.model);
   c.filter.earth = readEarth(top.section("earth"), c.filter.earth);
   readFilter(top.section("filter"), c.filter);
   top.finish();

@@ -2,6 +2,7 @@
 #include "imucal/io/atomic_file.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/config_sections.hpp"
+#include "imucal/io/param_units.hpp"
 
 namespace imucal::io {
 
@@ -83,15 +84,16 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   emitNumber(out, "arw_deg_per_sqrt_h", f.noise.gyro_white / units::deg_per_sqrt_h);
   emitNumber(out, "accel_bias_walk_ug_per_sqrt_s", f.noise.accel_bias_walk / units::micro_g);
   emitNumber(out, "gyro_bias_walk_deg_per_h_per_sqrt_h", f.noise.gyro_bias_walk / units::deg_per_h_per_sqrt_h);
+  emitBool(out, "from_data", f.noise.from_data);
   out << YAML::EndMap;
 
   out << YAML::Key << "prior" << YAML::Value << YAML::BeginMap;
   emitNumber(out, "tilt_deg", f.prior.tilt / deg);
   emitNumber(out, "yaw_deg", f.prior.yaw / deg);
-  emitNumber(out, "accel_bias_mg", f.prior.accel_bias / units::milli_g);
-  emitNumber(out, "gyro_bias_deg_per_h", f.prior.gyro_bias / units::deg_per_h);
-  emitNumber(out, "accel_scale_ppm", f.prior.accel_scale / units::ppm);
-  emitNumber(out, "gyro_scale_ppm", f.prior.gyro_scale / units::ppm);
+  for (const auto& info : paramBlocks()) {
+    const ParamUnit u = paramUnit(info.block);
+    emitNumber(out, info.id + "_" + u.suffix, f.model[info.block].sigma / u.factor);
+  }
   emitNumber(out, "position_m", f.prior.position);
   emitNumber(out, "velocity_m_per_s", f.prior.velocity);
   out << YAML::EndMap;
@@ -105,8 +107,20 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   out << YAML::EndMap;
 
   out << YAML::Key << "model" << YAML::Value << YAML::BeginMap;
-  emitBool(out, "accel_scale", f.model.accel_scale);
-  emitBool(out, "gyro_scale", f.model.gyro_scale);
+  const char* modes[] = {"off", "estimate", "consider"};
+  for (const auto& info : paramBlocks())
+    out << YAML::Key << info.id << YAML::Value << modes[static_cast<int>(f.model.mode(info.block))];
+  out << YAML::EndMap;
+
+  // Only the values that differ from zero, so a written config stays readable.
+  out << YAML::Key << "parameters" << YAML::Value << YAML::BeginMap;
+  for (const auto& info : paramBlocks()) {
+    const ParamUnit u = paramUnit(info.block);
+    for (int c = 0; c < info.size(); ++c) {
+      const ParamRef ref{info.block, c};
+      if (f.model.mean(ref) != 0.0) emitNumber(out, ref.name() + "_" + u.suffix, f.model.mean(ref) / u.factor);
+    }
+  }
   out << YAML::EndMap;
 
   emitEarth(out, f.earth);

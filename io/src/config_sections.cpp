@@ -10,6 +10,10 @@ EarthModel readEarth(YamlSection section, const EarthModel& fallback) {
   earth.latitude = section.number("latitude_deg", fallback.latitude / units::deg, Range::between(-90.0, 90.0)) * units::deg;
   earth.height = section.number("height_m", fallback.height, Range::between(-11000.0, 100000.0));
   earth.latitude_gravity = section.boolean("latitude_gravity", fallback.latitude_gravity);
+  // A measured value: 0 (the default) means none. Anything a gravimeter could read on or near the Earth.
+  earth.measured_gravity = section.number("gravity_m_per_s2", fallback.measured_gravity,
+                                          {[](double g) { return g == 0.0 || (g >= 9.7 && g <= 9.9); },
+                                           "must be a local gravity (9.7 to 9.9 m/s^2) or 0 for none"});
   earth.earth_rate = section.boolean("earth_rate", fallback.earth_rate);
   section.finish();
   return earth;
@@ -20,6 +24,7 @@ void emitEarth(YAML::Emitter& out, const EarthModel& earth) {
   emitNumber(out, "latitude_deg", earth.latitude / units::deg);
   emitNumber(out, "height_m", earth.height);
   out << YAML::Key << "latitude_gravity" << YAML::Value << earth.latitude_gravity;
+  emitNumber(out, "gravity_m_per_s2", earth.measured_gravity);
   out << YAML::Key << "earth_rate" << YAML::Value << earth.earth_rate;
   out << YAML::EndMap;
 }

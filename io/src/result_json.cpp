@@ -38,6 +38,7 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
               {"value_si", numberOrNull(result.estimate(k))},
               {"sigma_si", numberOrNull(result.sigma(k))},
               {"converged", static_cast<bool>(result.converged[i])},
+              {"not_converged_reason", i < result.not_converged_reason.size() ? result.not_converged_reason[i] : ""},
               {"convergence_time_s",
                k < result.convergence_time.size() ? numberOrNull(result.convergence_time(k)) : json(nullptr)}};
     if (k < result.prior_sigma.size()) {
@@ -58,7 +59,20 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
                 {"heading_nis_mean", numberOrNull(s.heading_nis_mean)},
                 {"velocity_nis_mean", numberOrNull(s.velocity_nis_mean)}}},
               {"passes", result.passes_run},
-              {"duration_s", numberOrNull(result.duration)}};
+              {"duration_s", numberOrNull(result.duration)},
+              {"warnings", result.warnings}};
+  const WhiteNoiseEstimate& m = result.noise_measured;
+  json noise = {{"source", m.valid ? "still stretches of the recording" : "config"},
+                {"vrw_m_per_s_per_sqrt_h", numberOrNull(result.noise_used.accel_white / units::m_per_s_per_sqrt_h)},
+                {"arw_deg_per_sqrt_h", numberOrNull(result.noise_used.gyro_white / units::deg_per_sqrt_h)}};
+  if (m.valid) {
+    const Vec3 vrw = m.accel_white / units::m_per_s_per_sqrt_h, arw = m.gyro_white / units::deg_per_sqrt_h;
+    noise["measured"] = {{"still_s", m.still_seconds},
+                         {"vrw_per_axis", {vrw.x(), vrw.y(), vrw.z()}},
+                         {"arw_per_axis", {arw.x(), arw.y(), arw.z()}},
+                         {"relative_sigma", m.relative_sigma}};
+  }
+  out["noise"] = noise;
   if (!result.history.empty()) {
     const EpochRecord& last = result.history.back();
     out["final_state"] = {{"t", last.t},

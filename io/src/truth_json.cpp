@@ -1,5 +1,6 @@
 #include "imucal/core/units.hpp"
 #include "imucal/io/json_output.hpp"
+#include "imucal/core/param_vector.hpp"
 #include "imucal/io/param_units.hpp"
 
 namespace imucal::io {
@@ -123,8 +124,16 @@ nlohmann::json truthToJson(const sim::SimConfig& config, const sim::SimOutput& o
   json params = json::object();
   addTriad(params, "accel_bias", applied.accel.bias, output.accel_bias_truth);
   addTriad(params, "gyro_bias", applied.gyro.bias, output.gyro_bias_truth);
-  addTriad(params, "accel_scale", applied.accel.scale, {});
-  addTriad(params, "gyro_scale", applied.gyro.scale, {});
+  // Every other sensor-model block of the registry, constant over the run.
+  const CalibrationParams truth{applied, 0.0};
+  for (const auto& info : paramBlocks()) {
+    if (info.block == ParamBlock::AccelBias || info.block == ParamBlock::GyroBias || info.block == ParamBlock::Gravity)
+      continue;
+    for (int c = 0; c < info.size(); ++c) {
+      const ParamRef ref{info.block, c};
+      params[ref.name()] = parameter(ref.name(), paramValue(truth, ref));
+    }
+  }
 
   const double duration = output.imu.size() > 1 ? output.imu.back().t - output.imu.front().t : 0.0;
   const auto& h = config.heading;

@@ -8,6 +8,7 @@
 #include "imucal/core/calibrator.hpp"
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/information_bound.hpp"
+#include "imucal/core/param_vector.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/sim/simulator.hpp"
 #include "imucal/sim/trajectory.hpp"
@@ -168,11 +169,10 @@ MonteCarloReport runMonteCarlo(const MonteCarloOptions& options) {
         if (cells[i].case_index != c) continue;
         const FilterConfig f = filterFor(options, cells[i]);
         const CalibrationResult r = calibrate(sim.imu, sim.heading, f);
-        VecX truth = VecX::Zero(r.estimate.size());
-        truth.segment<3>(0) = sim.applied_errors.accel.bias;
-        truth.segment<3>(3) = sim.applied_errors.gyro.bias;
-        if (r.layout.accel_scale >= 0) truth.segment<3>(r.layout.accel_scale - StateLayout::kParamStart) = sim.applied_errors.accel.scale;
-        if (r.layout.gyro_scale >= 0) truth.segment<3>(r.layout.gyro_scale - StateLayout::kParamStart) = sim.applied_errors.gyro.scale;
+        // The gravity error the filter could estimate: the simulated magnitude minus the one it assumes.
+        const double gravity_error = scenarioFor(options.cases[c], seed).earth.gravity() - f.earth.gravity();
+        const CalibrationParams applied{sim.applied_errors, gravity_error};
+        const VecX truth = toParamVector(r.layout, applied);
         records[i][run] = recordRun(r, truth);
       }
     }
@@ -198,7 +198,7 @@ MonteCarloReport runMonteCarlo(const MonteCarloOptions& options) {
 
   MonteCarloReport report;
   report.runs = options.runs;
-  report.names = StateLayout::make(options.filter.model).paramNames();
+  report.names = StateLayout::make(effectiveConfig(options.filter).model).paramNames();
   for (std::size_t i = 0; i < cells.size(); ++i) {
     const HeadingCase& hc = options.cases[cells[i].case_index];
     CellResult cell;

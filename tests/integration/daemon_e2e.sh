@@ -36,7 +36,7 @@ if [ "$rc" -ne 0 ]; then echo "restore check failed ($rc)"; cat "$tmp/daemon2.lo
 
 echo "== replay of the recorded input into a fresh daemon: the same calibration"
 mkdir -p "$tmp/state3"
-"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state3" --imu-channel IMUCAL_IMU \
+"$build/daemon/imucald" --lcm-url "$url" --state-dir "$tmp/state3" --calibration-config "$src/configs/paper-calibrate.yaml" --imu-channel IMUCAL_IMU \
   --calibration-channel IMUCAL_CALIBRATION_REPLAY --status-channel IMUCAL_STATUS_REPLAY > "$tmp/daemon3.log" 2>&1 &
 pids+=("$!")
 "$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 90 \

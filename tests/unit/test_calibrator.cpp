@@ -12,6 +12,7 @@
 #include "imucal/core/calibrator.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/sim/simulator.hpp"
+#include "simulated_gravity.hpp"
 
 namespace imucal {
 namespace {
@@ -35,8 +36,8 @@ const std::vector<SeedRun>& seedRuns() {
       SeedRun s;
       s.truth = VecX(6);
       s.truth << out.applied_errors.accel.bias, out.applied_errors.gyro.bias;
-      s.multi = calibrate(out.imu, out.heading, FilterConfig{});
-      FilterConfig one;
+      s.multi = calibrate(out.imu, out.heading, withSimulatedGravity());
+      FilterConfig one = withSimulatedGravity();
       one.passes = 1;
       one.full_yaw_reset = false;
       s.single = calibrate(out.imu, out.heading, one);
@@ -61,8 +62,8 @@ TEST(Calibrator, ResultStructure) {
   EXPECT_DOUBLE_EQ(r.duration, 30.0);
   EXPECT_GE(r.passes_run, 2);
   EXPECT_LE(r.passes_run, 3);
-  EXPECT_NEAR(r.prior_sigma(0), FilterConfig{}.prior.accel_bias, 1e-12);
-  EXPECT_NEAR(r.prior_sigma(5), FilterConfig{}.prior.gyro_bias, 1e-15);
+  EXPECT_NEAR(r.prior_sigma(0), FilterConfig{}.model[ParamBlock::AccelBias].sigma, 1e-12);
+  EXPECT_NEAR(r.prior_sigma(5), FilterConfig{}.model[ParamBlock::GyroBias].sigma, 1e-15);
   // Zero-velocity and position updates at every IMU epoch after the first; every heading sample after
   // the 1 s alignment window (101 samples at t = 0 ... 1 s fold into the initial yaw) is used or gated.
   EXPECT_EQ(r.stats.zero_velocity_updates, static_cast<long>(s.imu_samples) - 1);
@@ -128,7 +129,7 @@ TEST(Calibrator, WithoutHeadingGyroZIsNotConverged) {
   const sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, false, 3);
   const sim::SimOutput out = sim::simulate(sc, 3);
   ASSERT_TRUE(out.heading.empty());
-  FilterConfig cfg;
+  FilterConfig cfg = withSimulatedGravity();
   cfg.measurements.heading = false;
   const CalibrationResult r = calibrate(out.imu, out.heading, cfg);
   EXPECT_FALSE(r.converged[5]);

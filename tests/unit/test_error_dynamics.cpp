@@ -65,8 +65,8 @@ StateVec errorAfter(const Scenario& sc, const StateLayout& layout, const EarthMo
   Params tp = sc.params;
   tp.ba += dx.segment<3>(L::kAccelBias);
   tp.bg += dx.segment<3>(L::kGyroBias);
-  if (layout.accel_scale >= 0) tp.sa += dx.segment<3>(layout.accel_scale);
-  if (layout.gyro_scale >= 0) tp.sg += dx.segment<3>(layout.gyro_scale);
+  if (layout.has(ParamBlock::AccelScale)) tp.sa += dx.segment<3>(layout.offset(ParamBlock::AccelScale));
+  if (layout.has(ParamBlock::GyroScale)) tp.sg += dx.segment<3>(layout.offset(ParamBlock::GyroScale));
   propagateNav(nominal, correctedSample(sc.raw(0.0), sc.params), correctedSample(sc.raw(h), sc.params), earth);
   propagateNav(truth, correctedSample(sc.raw(0.0), tp), correctedSample(sc.raw(h), tp), earth);
   StateVec e = dx;  // parameters do not change
@@ -78,8 +78,8 @@ StateVec errorAfter(const Scenario& sc, const StateLayout& layout, const EarthMo
 
 void checkDenseFAgainstMechanization(bool earth_rate) {
   FilterConfig config;
-  config.model.accel_scale = true;
-  config.model.gyro_scale = true;
+  config.model.estimate(ParamBlock::AccelScale, true);
+  config.model.estimate(ParamBlock::GyroScale, true);
   config.earth.earth_rate = earth_rate;
   config.earth.latitude = 50.0 * units::deg;
   const StateLayout layout = StateLayout::make(config.model);
@@ -155,8 +155,8 @@ TEST(ErrorDynamics, EarthRateTermsAreTheOnlyDifference) {
 
 TEST(ErrorDynamics, ApplyFEqualsDenseFTimesX) {
   FilterConfig config;
-  config.model.accel_scale = true;
-  config.model.gyro_scale = true;
+  config.model.estimate(ParamBlock::AccelScale, true);
+  config.model.estimate(ParamBlock::GyroScale, true);
   config.earth.earth_rate = true;
   config.earth.latitude = 0.7;
   const StateLayout layout = StateLayout::make(config.model);
@@ -193,7 +193,10 @@ Vec3 numericHeadingGradient(const Mat3& c, bool exact_rotation) {
 }
 
 TEST(ErrorDynamics, HeadingJacobianMatchesCentralDifferences) {
-  const StateLayout layout = StateLayout::make(ModelOptions{true, true});
+  ModelOptions scales;
+  scales.estimate(ParamBlock::AccelScale);
+  scales.estimate(ParamBlock::GyroScale);
+  const StateLayout layout = StateLayout::make(scales);
   int checked = 0;
   for (double roll : {-60.0, -25.0, 0.0, 40.0, 60.0}) {
     for (double pitch : {-60.0, -10.0, 0.0, 30.0, 60.0}) {
@@ -267,8 +270,8 @@ TEST(ErrorDynamics, PropagateIsFirstOrderPhiPPhiTPlusQ) {
   // propagate() computes (I + F dt) P (I + F dt)^T + Q with Q the continuous white-noise terms integrated
   // over dt (velocity q_v dt, attitude q_a dt, position q_v dt^3/3 with cross term q_v dt^2/2, bias walks).
   FilterConfig config;
-  config.model.accel_scale = true;
-  config.model.gyro_scale = true;
+  config.model.estimate(ParamBlock::AccelScale, true);
+  config.model.estimate(ParamBlock::GyroScale, true);
   config.earth.earth_rate = true;
   config.earth.latitude = 0.4;
   config.noise.accel_white = 0.003;

@@ -136,8 +136,8 @@ TEST(Eskf, ZeroVelocityAndPositionUpdatesMatchSequentialKalman) {
   // Correlated covariance (after prediction over a tilted, rotating second): the updates must equal the
   // textbook sequential scalar Kalman update x += K (z - h x), P = (I - K h^T) P, K = P h / (h^T P h + r).
   FilterConfig cfg;
-  cfg.model.accel_scale = true;
-  cfg.model.gyro_scale = true;
+  cfg.model.estimate(ParamBlock::AccelScale, true);
+  cfg.model.estimate(ParamBlock::GyroScale, true);
   Eskf f(cfg);
   const StateLayout& layout = f.layout();
   NavState nav;
@@ -277,7 +277,7 @@ TEST(Eskf, FeedbackOffMatchesFeedbackOnOnNoiseFreeData) {
 
 TEST(Eskf, PredictIsMechanizationPlusPropagate) {
   FilterConfig cfg;
-  cfg.model.gyro_scale = true;
+  cfg.model.estimate(ParamBlock::GyroScale, true);
   Eskf f(cfg);
   const StateLayout& layout = f.layout();
   NavState nav;
@@ -315,7 +315,7 @@ TEST(Eskf, PredictIsMechanizationPlusPropagate) {
   lin.c_bn = nav.q_nb.slerp(0.5, ref.q_nb).toRotationMatrix();
   lin.f_b = -(lin.c_bn.transpose() * cfg.earth.gravityNed());
   lin.w_b = 0.5 * (ca.gyro + cb.gyro);
-  lin.gyro_gain_inv = (Vec3::Ones() + p.tail<3>()).cwiseInverse();  // at the nominal scale factors
+  lin.gyro_gain_inv = (Vec3::Ones() + p.tail<3>()).cwiseInverse().asDiagonal();  // at the nominal scale factors
   StateMat P = P0;
   ErrorDynamics(layout, cfg).propagate(P, lin, b.t - a.t);
   EXPECT_LT((f.covariance() - P).cwiseAbs().maxCoeff(), 1e-15);

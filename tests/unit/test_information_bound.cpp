@@ -11,6 +11,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/sim/simulator.hpp"
 #include "imucal/sim/trajectory.hpp"
+#include "simulated_gravity.hpp"
 
 namespace imucal {
 namespace {
@@ -49,7 +50,7 @@ TEST(InformationBound, AccelZBoundIsVelocityRandomWalkOverSqrtT) {
   // Zero-velocity updates make the vertical velocity a direct measurement of the integrated vertical
   // bias: sigma = VRW / sqrt(T).
   const PaperData& d = paperData();
-  const FilterConfig cfg;
+  const FilterConfig cfg = withSimulatedGravity();
   const BoundResult b = informationBound(d.trajectory, d.heading_times, cfg);
   const double T = 30.0;
   const double expected = cfg.noise.accel_white / std::sqrt(T);
@@ -62,7 +63,7 @@ TEST(InformationBound, AccelZBoundIsVelocityRandomWalkOverSqrtT) {
   EXPECT_EQ((b.sigma_history.back() - b.sigma).norm(), 0.0);
   EXPECT_NEAR(b.sigma(kAccelZ), std::sqrt(b.covariance(9 + kAccelZ, 9 + kAccelZ)), 1e-18);
   // The history starts at the prior.
-  EXPECT_NEAR(b.sigma_history.front()(kAccelZ), cfg.prior.accel_bias, 1e-12);
+  EXPECT_NEAR(b.sigma_history.front()(kAccelZ), cfg.model[ParamBlock::AccelBias].sigma, 1e-12);
 }
 
 TEST(InformationBound, GyroZBoundIsHeadingRegression) {
@@ -84,11 +85,11 @@ TEST(InformationBound, GyroZUnobservableWithoutHeading) {
   FilterConfig cfg;
   cfg.measurements.heading = false;
   const BoundResult b = informationBound(d.trajectory, d.heading_times, cfg);
-  EXPECT_NEAR(b.sigma(kGyroZ), cfg.prior.gyro_bias, 0.05 * cfg.prior.gyro_bias);
+  EXPECT_NEAR(b.sigma(kGyroZ), cfg.model[ParamBlock::GyroBias].sigma, 0.05 * cfg.model[ParamBlock::GyroBias].sigma);
   // Heading enabled but no samples is the same.
   FilterConfig with_heading;
   const BoundResult none = informationBound(d.trajectory, {}, with_heading);
-  EXPECT_NEAR(none.sigma(kGyroZ), cfg.prior.gyro_bias, 0.05 * cfg.prior.gyro_bias);
+  EXPECT_NEAR(none.sigma(kGyroZ), cfg.model[ParamBlock::GyroBias].sigma, 0.05 * cfg.model[ParamBlock::GyroBias].sigma);
   // The other parameters do not depend on heading much: the accel z bound is unchanged.
   const BoundResult with = informationBound(d.trajectory, d.heading_times, with_heading);
   EXPECT_NEAR(b.sigma(kAccelZ), with.sigma(kAccelZ), 0.01 * with.sigma(kAccelZ));

@@ -266,7 +266,7 @@ noise:
 prior:
   tilt_deg: 3
   yaw_deg: 90
-  accel_bias_mg: 50
+  accel_bias_ug: 50000
   gyro_bias_deg_per_h: 2000
   accel_scale_ppm: 10000
   gyro_scale_ppm: 20000
@@ -327,10 +327,10 @@ TEST(IoConfig, CalibrateConfigConvertsEveryKey) {
   EXPECT_DOUBLE_EQ(f.noise.gyro_bias_walk, 7 * deg / 3600 / 60);
   EXPECT_DOUBLE_EQ(f.prior.tilt, 3 * deg);
   EXPECT_DOUBLE_EQ(f.prior.yaw, 90 * deg);
-  EXPECT_DOUBLE_EQ(f.prior.accel_bias, 50e-3 * g);
-  EXPECT_DOUBLE_EQ(f.prior.gyro_bias, 2000 * deg / 3600);
-  EXPECT_DOUBLE_EQ(f.prior.accel_scale, 0.01);
-  EXPECT_DOUBLE_EQ(f.prior.gyro_scale, 0.02);
+  EXPECT_DOUBLE_EQ(f.model[ParamBlock::AccelBias].sigma, 50e-3 * g);
+  EXPECT_DOUBLE_EQ(f.model[ParamBlock::GyroBias].sigma, 2000 * deg / 3600);
+  EXPECT_DOUBLE_EQ(f.model[ParamBlock::AccelScale].sigma, 0.01);
+  EXPECT_DOUBLE_EQ(f.model[ParamBlock::GyroScale].sigma, 0.02);
   EXPECT_EQ(f.prior.position, 0.002);
   EXPECT_EQ(f.prior.velocity, 0.03);
   EXPECT_FALSE(f.measurements.zero_velocity);
@@ -338,8 +338,8 @@ TEST(IoConfig, CalibrateConfigConvertsEveryKey) {
   EXPECT_FALSE(f.measurements.constant_position);
   EXPECT_EQ(f.measurements.constant_position_sigma, 0.05);
   EXPECT_FALSE(f.measurements.heading);
-  EXPECT_TRUE(f.model.accel_scale);
-  EXPECT_TRUE(f.model.gyro_scale);
+  EXPECT_TRUE(f.model.estimates(ParamBlock::AccelScale));
+  EXPECT_TRUE(f.model.estimates(ParamBlock::GyroScale));
   EXPECT_DOUBLE_EQ(f.earth.latitude, -33.9 * deg);
   EXPECT_EQ(f.earth.height, 10.0);
   EXPECT_TRUE(f.earth.latitude_gravity);
@@ -420,15 +420,15 @@ TEST(IoConfig, CalibrateConfigRoundTripsThroughItsYaml) {
   near(b.filter.noise.accel_white, a.filter.noise.accel_white);
   near(b.filter.noise.gyro_white, a.filter.noise.gyro_white);
   near(b.filter.noise.gyro_bias_walk, a.filter.noise.gyro_bias_walk);
-  near(b.filter.prior.gyro_bias, a.filter.prior.gyro_bias);
-  near(b.filter.prior.accel_bias, a.filter.prior.accel_bias);
+  near(b.filter.model[ParamBlock::GyroBias].sigma, a.filter.model[ParamBlock::GyroBias].sigma);
+  near(b.filter.model[ParamBlock::AccelBias].sigma, a.filter.model[ParamBlock::AccelBias].sigma);
   near(b.filter.measurements.heading_sigma, a.filter.measurements.heading_sigma);
   near(b.filter.measurements.heading_latency, a.filter.measurements.heading_latency);
   near(b.filter.earth.latitude, a.filter.earth.latitude);
   near(b.mag_heading.declination, a.mag_heading.declination);
   near(b.mag_heading.inclination, a.mag_heading.inclination);
   EXPECT_EQ(b.filter.passes, a.filter.passes);
-  EXPECT_EQ(b.filter.model.gyro_scale, a.filter.model.gyro_scale);
+  EXPECT_EQ(b.filter.model.mode(ParamBlock::GyroScale), a.filter.model.mode(ParamBlock::GyroScale));
   EXPECT_EQ(b.filter.gravity_linearization, a.filter.gravity_linearization);
   EXPECT_EQ(b.filter.open_loop_refinement, a.filter.open_loop_refinement);
   EXPECT_EQ(b.filter.converged_sigma_ratio, a.filter.converged_sigma_ratio);

@@ -63,7 +63,7 @@ TEST(MonteCarloStudy, WithoutHeadingGyroZIsNeverCalledConverged) {
     if (cell.case_label != "none") continue;
     const ParamStats& gz = cell.params[5];
     EXPECT_DOUBLE_EQ(gz.converged_fraction, 0.0);
-    EXPECT_GT(gz.sigma_mean, 0.8 * defaults.prior.gyro_bias);
+    EXPECT_GT(gz.sigma_mean, 0.8 * defaults.model[ParamBlock::GyroBias].sigma);
   }
 }
 

@@ -17,9 +17,9 @@ constexpr int kSeeds = 12;
 
 TEST(ScaleFactor, GyroZScaleRecoveredWithinItsSigmaAndBound) {
   FilterConfig cfg;
-  cfg.model.gyro_scale = true;
+  cfg.model.estimate(ParamBlock::GyroScale, true);
   const Vec3 truth_scale(4000e-6, -3000e-6, 10000e-6);
-  const int gz = StateLayout::make(cfg.model).gyro_scale - StateLayout::kParamStart + 2;
+  const int gz = StateLayout::make(cfg.model).offset(ParamBlock::GyroScale) - StateLayout::kParamStart + 2;
 
   sim::SimConfig bound_sim = sim::paperScenario(5.0 * units::deg, true, 1);
   bound_sim.imu.errors.gyro.scale = truth_scale;
@@ -32,7 +32,7 @@ TEST(ScaleFactor, GyroZScaleRecoveredWithinItsSigmaAndBound) {
   // effect.
   EXPECT_GT(bound.sigma(gz), 1000e-6);
   EXPECT_LT(bound.sigma(gz), 1700e-6);
-  EXPECT_GT(bound.sigma(gz - 2), 0.95 * cfg.prior.gyro_scale);  // x never turns
+  EXPECT_GT(bound.sigma(gz - 2), 0.95 * cfg.model[ParamBlock::GyroScale].sigma);  // x never turns
 
   double sum_sq_norm = 0.0, sum_sq_err = 0.0;
   for (int seed = 1; seed <= kSeeds; ++seed) {

@@ -8,6 +8,7 @@
 
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/filter_config.hpp"
+#include "imucal/core/noise_from_data.hpp"
 #include "imucal/core/state_layout.hpp"
 #include "imucal/core/types.hpp"
 
@@ -16,7 +17,7 @@ namespace imucal {
 // One IMU epoch of the final pass.
 struct EpochRecord {
   double t = 0.0;
-  VecX params;   // calibration parameters (accel bias, gyro bias, optional scale factors), SI
+  VecX params;   // calibration parameters in state order (see StateLayout::params()), SI
   VecX sigmas;   // their 1-sigma
   Vec3 euler = Vec3::Zero();  // roll, pitch, yaw, rad
   Vec3 velocity = Vec3::Zero();
@@ -40,7 +41,16 @@ struct CalibrationResult {
   VecX sigma;                      // 1-sigma, SI
   VecX prior_sigma;                // 1-sigma before any data
   std::vector<bool> converged;     // sigma well below the prior and the estimate settled
+  std::vector<std::string> not_converged_reason;  // why not, per parameter ("" when converged)
+  // Said once per calibration: what the result rests on that the user did not give (gravity...).
+  std::vector<std::string> warnings;
+  // The noise the filter ran with, and what the still stretches said (valid when measured).
+  NoiseConfig noise_used;
+  WhiteNoiseEstimate noise_measured;
   VecX convergence_time;           // s from the first sample; NaN where not converged
+  // Index of the recording's first sample used (the start of its first quiet stretch); history[k] is
+  // sample first_sample + k.
+  std::size_t first_sample = 0;
   std::vector<EpochRecord> history;
   MeasurementStats stats;
   int passes_run = 0;
@@ -49,6 +59,9 @@ struct CalibrationResult {
   double log_likelihood = 0.0;
   std::vector<Eskf::Innovation> innovations;
 };
+
+// not_converged_reason of a parameter whose sigma is mostly the unknown gravity magnitude's.
+inline constexpr const char* kLimitedByGravity = "limited by the unknown gravity magnitude";
 
 struct CalibrateOptions {
   bool keep_innovations = false;

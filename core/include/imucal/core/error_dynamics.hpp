@@ -12,7 +12,7 @@
 
 namespace imucal {
 
-constexpr int kMaxStates = 27;
+constexpr int kMaxStates = 48;
 using StateVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxStates, 1>;
 using StateMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxStates, kMaxStates>;
 
@@ -21,10 +21,15 @@ struct Linearization {
   Mat3 c_bn = Mat3::Identity();   // body to navigation
   Vec3 f_b = Vec3::Zero();        // corrected specific force, body
   Vec3 w_b = Vec3::Zero();        // corrected inertial rate, body
-  // 1 / (1 + scale factor) per axis: the corrected value is (measured - bias) / (1 + scale).
-  Vec3 accel_gain_inv = Vec3::Ones();
-  Vec3 gyro_gain_inv = Vec3::Ones();
+  // Inverse sensor matrices: corrected = gain^-1 (measured - bias [- g-sensitivity f]).
+  Mat3 accel_gain_inv = Mat3::Identity();
+  Mat3 gyro_gain_inv = Mat3::Identity();
 };
+
+// d(corrected)/d(block) of one sensor-model block, 3 x block size, given gain^-1 and the corrected value
+// the block multiplies (specific force for the accelerometer and g-sensitivity, rate for the gyro).
+// Errors are true minus estimated, so a positive bias error lowers the corrected value.
+MatX blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value);
 
 class ErrorDynamics {
  public:
@@ -55,9 +60,11 @@ double headingOf(const Mat3& c_bn);
 void headingJacobian(const Mat3& c_bn, const StateLayout& layout, StateVec& h);
 
 // Joseph-form update of P with one scalar measurement row h, noise variance r. Returns the gain K and
-// the innovation variance s. Symmetrizes P.
-void josephScalarUpdate(StateMat& P, const StateVec& h, double r, StateVec& K, double& s);
+// the innovation variance s. Symmetrizes P. With a mask, the gain of every state whose entry is 0 (a
+// considered parameter) is zeroed: the Joseph form stays exact for that suboptimal gain (Schmidt).
+void josephScalarUpdate(StateMat& P, const StateVec& h, double r, StateVec& K, double& s,
+                        const StateVec* mask = nullptr);
 // Same for a row selecting state index i (h = e_i); avoids the dense product.
-void josephSelectorUpdate(StateMat& P, int i, double r, StateVec& K, double& s);
+void josephSelectorUpdate(StateMat& P, int i, double r, StateVec& K, double& s, const StateVec* mask = nullptr);
 
 }  // namespace imucal

@@ -6,6 +6,7 @@
 #include "imucal/core/error_dynamics.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/mechanization.hpp"
+#include "imucal/core/param_vector.hpp"
 #include "imucal/core/state_layout.hpp"
 
 namespace imucal {
@@ -14,8 +15,12 @@ class Eskf {
  public:
   explicit Eskf(const FilterConfig& config);
 
-  // params: calibration parameters in state order (layout().paramCount() values, SI).
-  void initialize(const ImuSample& first_raw, const NavState& nav, const VecX& params, const StateMat& P0);
+  // params: calibration parameters in state order (layout().paramCount() values, SI), the point the
+  // nominal state is computed at. prior_mean (empty: params) is the prior's mean: a later pass linearizes
+  // about the previous estimate but keeps the original prior, so its error state starts at
+  // prior_mean - params (an iterated, maximum a posteriori step) rather than at zero.
+  void initialize(const ImuSample& first_raw, const NavState& nav, const VecX& params, const StateMat& P0,
+                  const VecX& prior_mean = VecX());
   // Advances nominal state and covariance to raw.t (> time()).
   void predict(const ImuSample& raw);
 
@@ -64,6 +69,8 @@ class Eskf {
   const VecX& params() const { return params_; }
   const StateMat& covariance() const { return P_; }
   const StateLayout& layout() const { return layout_; }
+  // The sensor model at the nominal parameters (blocks outside the state at their configured values).
+  const CalibrationParams& sensorModel() const { return model_; }
   // The raw sample corrected with the current parameter estimates.
   ImuSample corrected(const ImuSample& raw) const;
 
@@ -71,12 +78,21 @@ class Eskf {
   void scalarSelector(int index, double innovation, double variance, double& nis);
   void scalarRow(const StateVec& h, double innovation, double variance, double& nis);
   void record(int channel, double y, double s);
+  // Re-derives the sensor model, its inverse gains and the gravity used from params_.
+  void refreshModel();
   // Rows of the centre's position / velocity pseudo-observation for a lever arm (see lever_arm.hpp).
+  // lever_jacobian: d(centre quantity)/d(lever arm), used when the lever arm is a state.
   double updateCentre(int channel0, const Vec3& predicted, const Mat3& att_jacobian, const Mat3* gyro_bias_jacobian,
-                      double sigma);
+                      const Mat3& lever_jacobian, double sigma);
 
   FilterConfig config_;
   StateLayout layout_;
+  EarthModel earth_;  // config_.earth with the estimated gravity error added
+  CalibrationParams model_;
+  Mat3 accel_gain_inv_ = Mat3::Identity();
+  Mat3 gyro_gain_inv_ = Mat3::Identity();
+  StateVec update_mask_;
+  bool has_considered_ = false;
   ErrorDynamics dynamics_;
   NavState nav_;
   VecX params_;

@@ -1,5 +1,8 @@
 #pragma once
 // Everything the filter needs to be told, SI inside. Human units are converted at the edges (io/).
+#include <string>
+#include <vector>
+
 #include "imucal/core/earth.hpp"
 #include "imucal/core/state_layout.hpp"
 #include "imucal/core/types.hpp"
@@ -11,15 +14,15 @@ struct NoiseConfig {
   double gyro_white = 0.3 / 60.0 * 3.14159265358979323846 / 180.0;  // ARW, rad/sqrt(s)
   double accel_bias_walk = 0.0;                 // m/s^2/sqrt(s)
   double gyro_bias_walk = 0.0;                  // rad/s/sqrt(s)
+  // Measure the white densities on the recording's still stretches and use those (the values above are
+  // then the fallback when there is too little still data); false pins the values above.
+  bool from_data = true;
 };
 
+// The navigation states' prior; the calibration parameters' priors are in ModelOptions (the registry's).
 struct PriorConfig {
   double tilt = 5.0 * 3.14159265358979323846 / 180.0;  // rad, 1-sigma of roll/pitch after coarse alignment
   double yaw = 3.14159265358979323846;                 // rad, when no heading is available at start
-  double accel_bias = 0.1 * 9.80665;                   // m/s^2
-  double gyro_bias = 1.0 * 3.14159265358979323846 / 180.0;  // rad/s
-  double accel_scale = 0.02;                           // fraction
-  double gyro_scale = 0.02;
   double position = 1e-3;                              // m
   double velocity = 1e-2;                              // m/s
 };
@@ -33,9 +36,6 @@ struct MeasurementConfig {
   double heading_sigma = 5.0 * 3.14159265358979323846 / 180.0;  // rad
   double heading_latency = 0.0;        // s, subtracted from heading time stamps
   double heading_bias = 0.0;           // rad, subtracted from heading values (see heading_model.hpp)
-  // IMU position relative to the centre the device is turned about (body frame, m): the zero-velocity and
-  // constant-position pseudo-observations are then of the centre, not of the IMU (see lever_arm.hpp).
-  Vec3 lever_arm = Vec3::Zero();
   // Heading innovations beyond this many sigma are rejected (a magnetometer near iron).
   double heading_gate_sigma = 0.0;     // 0 = no gate
 };
@@ -65,5 +65,14 @@ struct FilterConfig {
   // A parameter counts as converged when its sigma has fallen below this fraction of its prior sigma.
   double converged_sigma_ratio = 0.2;
 };
+
+}  // namespace imucal
+
+namespace imucal {
+
+// The configuration the filter actually runs: when gravity's magnitude is neither measured nor given by
+// the latitude, its error becomes an estimated state (unless the config says what to do with it), so the
+// accelerometer parameters it confounds carry its uncertainty. Appends a warning saying so.
+FilterConfig effectiveConfig(const FilterConfig& config, std::vector<std::string>* warnings = nullptr);
 
 }  // namespace imucal

@@ -16,6 +16,23 @@ struct InitialAlignment {
   int heading_samples_used = 0;
 };
 
+// Where to level: hand-held recordings often move from their first sample, so the window is searched for
+// rather than assumed at the start.
+struct AlignmentWindow {
+  std::size_t first = 0;    // index of the window's first sample: the filter starts here
+  double gyro_spread = 0.0; // largest per-axis standard deviation in the window, rad/s
+  double accel_spread = 0.0;
+  bool usable = false;      // quiet enough to level on
+};
+// The earliest window of `duration` whose gyro spread is within 1.5x of the quietest window's (windows
+// every duration / 2). Usable when that spread is below 0.1 rad/s and the accelerometer's below 0.5 m/s^2:
+// a hand holding the device still, not a turn.
+AlignmentWindow findAlignmentWindow(const std::vector<ImuSample>& imu, double duration);
+
+// The IMU starts at C r from the centre: with the lever arm a state, an unknown lever arm is an unknown
+// start position, and the two errors are one (dp0 = C dr), not independent. No-op without the block.
+void correlateStartWithLeverArm(StateMat& P, const StateLayout& layout, const Mat3& c_bn);
+
 // Prior covariance; yaw_variance is the variance of the initial yaw (rad^2).
 StateMat priorCovariance(const FilterConfig& config, const StateLayout& layout, double yaw_variance);
 

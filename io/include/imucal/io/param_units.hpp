@@ -1,6 +1,8 @@
 #pragma once
-// The human unit each calibration parameter is reported in, derived from its stable name.
+// The human unit each calibration parameter is reported in, from the parameter registry.
 #include <string>
+
+#include "imucal/core/param_registry.hpp"
 
 namespace imucal::io {
 
@@ -11,7 +13,8 @@ struct ParamUnit {
   double factor = 1.0; // SI per human unit: si_value = human_value * factor
 };
 
-// accel_bias_* in ug, gyro_bias_* in deg/h, *_scale_* in ppm; any other name stays in SI (suffix "si").
+ParamUnit paramUnit(ParamBlock block);
+// By the parameter's registry name; a name the registry does not define stays in SI (suffix "si").
 ParamUnit paramUnit(const std::string& name);
 
 }  // namespace imucal::io

@@ -25,7 +25,13 @@ struct MonteCarloOptions {
   std::uint64_t first_seed = 1;
   int threads = 0;                 // 0 = all cores
   std::vector<HeadingCase> cases = paperHeadingCases();
-  FilterConfig filter;             // heading sigma and heading on/off are set per cell
+  // Heading sigma and heading on/off are set per cell. The study simulates standard gravity, and the
+  // filter is told so (a user of the simulator knows its gravity).
+  FilterConfig filter = [] {
+    FilterConfig f;
+    f.earth.measured_gravity = 9.80665;
+    return f;
+  }();
   bool compare_plain = true;       // also run a single-pass, first-order-reset filter at R = true noise
 };
 

@@ -1,0 +1,78 @@
+#pragma once
+// Every calibration parameter block, declared once: its stable id, components, units, default prior and
+// plausible size. The state layout, the configuration keys, the result files, the daemon's messages and
+// the simulator's truth are all derived from this table; nothing else names a parameter.
+//
+// Sensor model (see sensor_model.hpp), both triads in body axes:
+//   accel_measured = (I + diag(accel_scale) + accel_misalignment) f + accel_bias
+//   gyro_measured  = (I + diag(gyro_scale) + gyro_misalignment) w + gyro_g_sensitivity f + gyro_bias
+// The body frame is the accelerometer's: its x axis is the accelerometer's x axis and its y axis lies in the
+// accelerometer's x-y plane, so the accelerometer misalignment is lower triangular (yx, zx, zy: three
+// non-orthogonality angles) and the gyro misalignment has all six off-diagonal terms (its non-orthogonality
+// and its rotation relative to the accelerometer). Component "rc" is the term of row r, column c: how much
+// of the true c-axis value the r-axis reads.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace imucal {
+
+enum class ParamBlock : int {
+  AccelBias,
+  GyroBias,
+  AccelScale,
+  GyroScale,
+  AccelMisalignment,
+  GyroMisalignment,
+  GyroGSensitivity,
+  // Error of the gravity magnitude the mechanization assumes (true minus assumed), for when neither the
+  // latitude nor a measured value is given.
+  Gravity,
+  // Position of the IMU relative to the centre the device is turned about (body frame): the
+  // pseudo-observations speak of the centre (see lever_arm.hpp).
+  LeverArm,
+};
+constexpr int kParamBlockCount = 9;
+
+// Off: not in the state, its value (the prior mean) applied as known. Estimate: a filter state. Consider:
+// a state whose uncertainty is propagated into the others but which no measurement updates (Schmidt), so
+// the sigmas of the estimated parameters stay honest about what was left out.
+enum class BlockMode { Off, Estimate, Consider };
+
+struct ParamBlockInfo {
+  ParamBlock block;
+  std::string id;                       // "accel_bias"; parameter names are id + "_" + component
+  std::vector<std::string> components;  // "x", "y", "z"; "yx"...; empty name: the parameter is id itself
+  std::string si_unit;                  // "m/s^2"
+  std::string human_unit;               // "ug"
+  std::string suffix;                   // the human unit in key and column names: "ug", "deg_per_h"
+  double si_per_human = 1.0;            // si_value = human_value * si_per_human
+  double prior_sigma = 0.0;             // default 1-sigma before any data, SI
+  double plausible = 0.0;               // |value| beyond this is no consumer sensor: refused, SI
+  BlockMode default_mode = BlockMode::Off;
+  std::string description;
+
+  int size() const { return static_cast<int>(components.size()); }
+  std::string paramName(int component) const;
+};
+
+// The table, in state order.
+const std::array<ParamBlockInfo, kParamBlockCount>& paramBlocks();
+const ParamBlockInfo& blockInfo(ParamBlock block);
+std::optional<ParamBlock> findBlock(const std::string& id);
+
+// One parameter: a block and a component of it.
+struct ParamRef {
+  ParamBlock block = ParamBlock::AccelBias;
+  int component = 0;
+  const ParamBlockInfo& info() const { return blockInfo(block); }
+  std::string name() const { return info().paramName(component); }
+};
+// By exact name ("gyro_misalignment_zx"), over every name the table defines.
+std::optional<ParamRef> findParam(const std::string& name);
+
+// Row and column of a matrix-valued block's component ("zx" -> 2, 0); -1, -1 for a vector block.
+std::pair<int, int> matrixIndex(const ParamRef& ref);
+
+}  // namespace imucal

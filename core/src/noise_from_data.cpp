@@ -1,0 +1,78 @@
+#include "imucal/core/noise_from_data.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace imucal {
+
+WhiteNoiseEstimate estimateWhiteNoise(const std::vector<ImuSample>& imu, const std::vector<bool>& still,
+                                      double block_time, int min_differences) {
+  WhiteNoiseEstimate out;
+  if (imu.size() != still.size() || imu.size() < 2) return out;
+  std::vector<double> sq[6];  // squared differences per axis: accel x y z, gyro x y z
+  double tau_sum = 0.0;  // block durations, for the mean block length actually used
+  int blocks = 0;
+
+  std::size_t i = 0;
+  while (i < imu.size()) {
+    if (!still[i]) {
+      ++i;
+      continue;
+    }
+    std::size_t end = i;
+    while (end < imu.size() && still[end]) ++end;
+    // Blocks of at least block_time inside the run [i, end); adjacent ones are differenced.
+    bool have_prev = false;
+    Vec3 prev_a, prev_g;
+    std::size_t b = i;
+    while (b < end) {
+      std::size_t e = b;
+      Vec3 a = Vec3::Zero(), g = Vec3::Zero();
+      while (e < end && (e == b || imu[e].t - imu[b].t < block_time)) {
+        a += imu[e].accel;
+        g += imu[e].gyro;
+        ++e;
+      }
+      if (e >= end && imu[e - 1].t - imu[b].t < 0.5 * block_time) break;  // a short tail block
+      const double n = static_cast<double>(e - b);
+      a /= n;
+      g /= n;
+      const double tau = (e < imu.size() ? imu[e].t : imu[e - 1].t) - imu[b].t;
+      if (have_prev) {
+        for (int k = 0; k < 3; ++k) {
+          sq[k].push_back((a - prev_a)(k) * (a - prev_a)(k));
+          sq[3 + k].push_back((g - prev_g)(k) * (g - prev_g)(k));
+        }
+        tau_sum += tau;
+        ++out.differences;
+      }
+      out.still_seconds += tau;
+      prev_a = a;
+      prev_g = g;
+      have_prev = true;
+      ++blocks;
+      b = e;
+    }
+    i = end;
+  }
+  if (out.differences < min_differences) return out;
+  const double d = static_cast<double>(out.differences);
+  const double tau = tau_sum / d;
+  // var(mean_k+1 - mean_k) = 2 N^2 / tau for white noise of density N. The variance is read off the median
+  // squared difference (0.4549 of the variance for a Gaussian), so the start and end of a move that the
+  // still detector let in, or a tap on the table, do not count.
+  for (int k = 0; k < 6; ++k) {
+    auto& v = sq[k];
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    const double variance = v[v.size() / 2] / 0.454936;
+    (k < 3 ? out.accel_white(k) : out.gyro_white(k - 3)) = std::sqrt(variance * tau / 2.0);
+  }
+  out.accel_white_rms = std::sqrt(out.accel_white.squaredNorm() / 3.0);
+  out.gyro_white_rms = std::sqrt(out.gyro_white.squaredNorm() / 3.0);
+  // Asymptotic spread of a median of chi-square(1) values, halved for the square root.
+  out.relative_sigma = 1.167 / std::sqrt(d);
+  out.valid = true;
+  return out;
+}
+
+}  // namespace imucal

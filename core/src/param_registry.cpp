@@ -1,0 +1,83 @@
+#include "imucal/core/param_registry.hpp"
+
+#include <stdexcept>
+
+#include "imucal/core/units.hpp"
+
+namespace imucal {
+
+namespace {
+
+std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
+  using namespace units;
+  const std::vector<std::string> xyz{"x", "y", "z"};
+  const double mrad = 1e-3;
+  const double deg_per_s_per_g = deg_per_s / kStandardGravity;
+  // Priors: a consumer MEMS part out of the box (MPU6050, ICM-42688-P, BMI088 datasheets: offsets to
+  // +-150 mg and +-5 deg/s, sensitivity +-3 %, cross-axis +-2 %, g-sensitivity up to 0.1 deg/s/g).
+  // Plausible: beyond any such part, even read as raw counts with a sensitivity 30 % off.
+  return {{
+      {ParamBlock::AccelBias, "accel_bias", xyz, "m/s^2", "ug", "ug", micro_g, 0.1 * kStandardGravity,
+       0.5 * kStandardGravity, BlockMode::Estimate, "accelerometer offset"},
+      {ParamBlock::GyroBias, "gyro_bias", xyz, "rad/s", "deg/h", "deg_per_h", deg_per_h, 1.0 * deg_per_s,
+       30.0 * deg_per_s, BlockMode::Estimate, "gyro offset"},
+      {ParamBlock::AccelScale, "accel_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off,
+       "accelerometer scale factor error (sensitivity ratio - 1)"},
+      {ParamBlock::GyroScale, "gyro_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off,
+       "gyro scale factor error (sensitivity ratio - 1)"},
+      {ParamBlock::AccelMisalignment, "accel_misalignment", {"yx", "zx", "zy"}, "rad", "mrad", "mrad", mrad,
+       1.0 * deg, 5.0 * deg, BlockMode::Off, "accelerometer non-orthogonality (lower triangle)"},
+      {ParamBlock::GyroMisalignment, "gyro_misalignment", {"xy", "xz", "yx", "yz", "zx", "zy"}, "rad", "mrad",
+       "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off,
+       "gyro cross-axis terms relative to the accelerometer's axes"},
+      {ParamBlock::GyroGSensitivity, "gyro_g_sensitivity", {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"},
+       "rad/s/(m/s^2)", "deg/s/g", "deg_per_s_per_g", deg_per_s_per_g, 0.1 * deg_per_s_per_g,
+       2.0 * deg_per_s_per_g, BlockMode::Off, "gyro rate per specific force (linear acceleration sensitivity)"},
+      // Normal gravity runs from 9.780 (equator) to 9.832 m/s^2 (poles): a 1-sigma of a quarter of that
+      // span puts the whole range within 2 sigma of the standard value.
+      {ParamBlock::Gravity, "gravity", {""}, "m/s^2", "ug", "ug", micro_g, 0.013, 0.06, BlockMode::Off,
+       "gravity magnitude minus the one assumed"},
+      // A hand turns a board about a point a few centimetres from the IMU.
+      {ParamBlock::LeverArm, "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05, 0.5, BlockMode::Off,
+       "IMU position relative to the centre of the turn, body axes"},
+  }};
+}
+
+}  // namespace
+
+std::string ParamBlockInfo::paramName(int component) const {
+  const std::string& c = components.at(static_cast<std::size_t>(component));
+  return c.empty() ? id : id + "_" + c;
+}
+
+const std::array<ParamBlockInfo, kParamBlockCount>& paramBlocks() {
+  static const std::array<ParamBlockInfo, kParamBlockCount> table = makeTable();
+  return table;
+}
+
+const ParamBlockInfo& blockInfo(ParamBlock block) {
+  const int i = static_cast<int>(block);
+  if (i < 0 || i >= kParamBlockCount) throw std::out_of_range("blockInfo: no such parameter block");
+  return paramBlocks()[static_cast<std::size_t>(i)];
+}
+
+std::optional<ParamBlock> findBlock(const std::string& id) {
+  for (const auto& b : paramBlocks())
+    if (b.id == id) return b.block;
+  return std::nullopt;
+}
+
+std::optional<ParamRef> findParam(const std::string& name) {
+  for (const auto& b : paramBlocks())
+    for (int c = 0; c < b.size(); ++c)
+      if (b.paramName(c) == name) return ParamRef{b.block, c};
+  return std::nullopt;
+}
+
+std::pair<int, int> matrixIndex(const ParamRef& ref) {
+  const std::string& c = ref.info().components.at(static_cast<std::size_t>(ref.component));
+  if (c.size() != 2) return {-1, -1};
+  return {c[0] - 'x', c[1] - 'x'};
+}
+
+}  // namespace imucal

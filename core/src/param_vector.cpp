@@ -1,0 +1,60 @@
+#include "imucal/core/param_vector.hpp"
+
+#include <stdexcept>
+
+namespace imucal {
+
+namespace {
+
+double* field(CalibrationParams& p, const ParamRef& ref) {
+  const auto [row, col] = matrixIndex(ref);
+  const int c = ref.component;
+  switch (ref.block) {
+    case ParamBlock::AccelBias: return &p.imu.accel.bias(c);
+    case ParamBlock::GyroBias: return &p.imu.gyro.bias(c);
+    case ParamBlock::AccelScale: return &p.imu.accel.scale(c);
+    case ParamBlock::GyroScale: return &p.imu.gyro.scale(c);
+    case ParamBlock::AccelMisalignment: return &p.imu.accel.misalignment(row, col);
+    case ParamBlock::GyroMisalignment: return &p.imu.gyro.misalignment(row, col);
+    case ParamBlock::GyroGSensitivity: return &p.imu.gyro_g_sensitivity(row, col);
+    case ParamBlock::Gravity: return &p.gravity_error;
+    case ParamBlock::LeverArm: return &p.lever_arm(c);
+  }
+  throw std::logic_error("param_vector: a registry block without a sensor-model field");
+}
+
+}  // namespace
+
+double paramValue(const CalibrationParams& p, const ParamRef& ref) {
+  return *field(const_cast<CalibrationParams&>(p), ref);
+}
+
+void setParamValue(CalibrationParams& p, const ParamRef& ref, double value) { *field(p, ref) = value; }
+
+CalibrationParams toCalibrationParams(const StateLayout& layout, const VecX& params, const ModelOptions& options) {
+  if (params.size() != layout.paramCount()) throw std::invalid_argument("toCalibrationParams: wrong parameter count");
+  CalibrationParams p;
+  for (const auto& info : paramBlocks()) {
+    if (layout.has(info.block)) continue;
+    for (int c = 0; c < info.size(); ++c) setParamValue(p, {info.block, c}, options.mean({info.block, c}));
+  }
+  const auto& refs = layout.params();
+  for (std::size_t i = 0; i < refs.size(); ++i) setParamValue(p, refs[i], params(static_cast<Eigen::Index>(i)));
+  return p;
+}
+
+VecX toParamVector(const StateLayout& layout, const CalibrationParams& p) {
+  const auto& refs = layout.params();
+  VecX x(static_cast<Eigen::Index>(refs.size()));
+  for (std::size_t i = 0; i < refs.size(); ++i) x(static_cast<Eigen::Index>(i)) = paramValue(p, refs[i]);
+  return x;
+}
+
+VecX priorMean(const StateLayout& layout, const ModelOptions& options) {
+  const auto& refs = layout.params();
+  VecX x(static_cast<Eigen::Index>(refs.size()));
+  for (std::size_t i = 0; i < refs.size(); ++i) x(static_cast<Eigen::Index>(i)) = options.mean(refs[i]);
+  return x;
+}
+
+}  // namespace imucal
