@@ -92,6 +92,7 @@ void runCalibrateCommand(const CalibrateArgs& args) {
   const Recording recording = loadRecording(args.input, config);
   CalibrateOptions options;
   options.max_history_epochs = kMaxHistoryEpochs;
+  options.check_halves = true;
   CalibrationResult result = calibrate(recording.imu, recording.heading, config.filter, options);
   // A result whose innovations contradict its model is kept for inspection but promises nothing.
   const std::vector<std::string> problems = inconsistencies(result);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 #include <stdexcept>
 
 #include "imucal/core/convergence.hpp"
@@ -153,8 +154,10 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
 
 }  // namespace
 
-CalibrationResult calibrate(const std::vector<ImuSample>& recording, const std::vector<HeadingSample>& raw_heading,
-                            const FilterConfig& given, const CalibrateOptions& options) {
+namespace {
+
+CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const std::vector<HeadingSample>& raw_heading,
+                                const FilterConfig& given, const CalibrateOptions& options) {
   validate(recording, raw_heading);
   CalibrationResult result;
   // Level on a quiet stretch, wherever it is: the samples before it are not used.
@@ -222,6 +225,17 @@ CalibrationResult calibrate(const std::vector<ImuSample>& recording, const std::
 
   result.estimate = pass.params;
   result.sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+  // Innovations larger than the model says (mean NIS above 1) mean noise or motion the model lacks: the
+  // sigmas grow by the square root of the worse channel's mean NIS, the usual covariance-matching factor.
+  const double nis = std::max({1.0, pass.stats.velocity_nis_mean, pass.stats.heading_nis_mean});
+  result.sigma_inflation = std::sqrt(nis);
+  if (result.sigma_inflation > 1.05) {
+    result.sigma *= result.sigma_inflation;
+    std::ostringstream msg;
+    msg << "consistency: the innovations are " << nis << " times the variance the model gives them (mean NIS); "
+        << "every sigma is inflated by " << result.sigma_inflation;
+    result.warnings.push_back(msg.str());
+  }
   result.stats = pass.stats;
   result.history = std::move(pass.history);
   result.log_likelihood = pass.log_likelihood;
@@ -254,6 +268,7 @@ CalibrationResult calibrate(const std::vector<ImuSample>& recording, const std::
     // A parameter whose variance is mostly gravity's (the accelerometer z bias when g is unknown) says
     // more about the assumed gravity than about the sensor.
     if (gravity >= 0 && j != gravity) {
+      // Gravity's share of the variance (the inflation scales both alike).
       const double p_jg = pass.P(p0 + j, p0 + gravity);
       const double var_g = pass.P(p0 + gravity, p0 + gravity);
       const double var = pass.P(p0 + j, p0 + j);
@@ -265,6 +280,51 @@ CalibrationResult calibrate(const std::vector<ImuSample>& recording, const std::
     result.converged[j] = true;
     result.convergence_time(j) = selfConvergenceTime(t, x, s, 2.0 * result.sigma(j));
   }
+  return result;
+}
+
+// The recording's halves, each calibrated alone: a parameter whose halves disagree by more than 4 combined
+// sigma is not stable over the recording, whatever its sigma says.
+void checkHalves(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                 const FilterConfig& config, CalibrationResult& result) {
+  const double mid = 0.5 * (imu.front().t + imu.back().t);
+  const auto split = [mid](const auto& v, bool first) {
+    std::remove_cv_t<std::remove_reference_t<decltype(v)>> out;
+    for (const auto& x : v)
+      if ((x.t < mid) == first) out.push_back(x);
+    return out;
+  };
+  CalibrateOptions plain;
+  plain.max_history_epochs = 2;
+  CalibrationResult a, b;
+  try {
+    a = calibrateOnce(split(imu, true), split(heading, true), config, plain);
+    b = calibrateOnce(split(imu, false), split(heading, false), config, plain);
+  } catch (const std::exception& e) {
+    result.warnings.push_back(std::string("halves: not compared (") + e.what() + ")");
+    return;
+  }
+  if (a.names != result.names || b.names != result.names) return;
+  result.halves_z = VecX::Zero(result.estimate.size());
+  for (Eigen::Index j = 0; j < result.estimate.size(); ++j) {
+    const double z = (a.estimate(j) - b.estimate(j)) / std::hypot(a.sigma(j), b.sigma(j));
+    result.halves_z(j) = z;
+    const auto k = static_cast<std::size_t>(j);
+    if (!result.converged[k] || std::abs(z) <= 4.0) continue;
+    result.converged[k] = false;
+    std::ostringstream msg;
+    msg << "the recording's halves disagree: " << a.estimate(j) << " +- " << a.sigma(j) << " vs " << b.estimate(j)
+        << " +- " << b.sigma(j) << " (SI, " << z << " sigma)";
+    result.not_converged_reason[k] = msg.str();
+  }
+}
+
+}  // namespace
+
+CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                            const FilterConfig& config, const CalibrateOptions& options) {
+  CalibrationResult result = calibrateOnce(imu, heading, config, options);
+  if (options.check_halves && result.duration >= options.min_halves_duration) checkHalves(imu, heading, config, result);
   return result;
 }
 

@@ -30,6 +30,7 @@ SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<
   try {
     CalibrateOptions options;
     options.max_history_epochs = kMaxHistoryEpochs;
+    options.check_halves = true;
     result = calibrate(imu, heading, filter, options);
   } catch (const std::exception& e) {
     out.failure = e.what();

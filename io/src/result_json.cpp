@@ -60,7 +60,8 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
                 {"velocity_nis_mean", numberOrNull(s.velocity_nis_mean)}}},
               {"passes", result.passes_run},
               {"duration_s", numberOrNull(result.duration)},
-              {"warnings", result.warnings}};
+              {"warnings", result.warnings},
+              {"sigma_inflation", numberOrNull(result.sigma_inflation)}};
   const WhiteNoiseEstimate& m = result.noise_measured;
   json noise = {{"source", m.valid ? "still stretches of the recording" : "config"},
                 {"vrw_m_per_s_per_sqrt_h", numberOrNull(result.noise_used.accel_white / units::m_per_s_per_sqrt_h)},

@@ -44,6 +44,10 @@ struct CalibrationResult {
   std::vector<std::string> not_converged_reason;  // why not, per parameter ("" when converged)
   // Said once per calibration: what the result rests on that the user did not give (gravity...).
   std::vector<std::string> warnings;
+  // Factor the sigmas were multiplied by because the innovations were larger than modelled (1: none).
+  double sigma_inflation = 1.0;
+  // (a - b) / combined sigma of the two halves calibrated alone, per parameter (empty when not checked).
+  VecX halves_z;
   // The noise the filter ran with, and what the still stretches said (valid when measured).
   NoiseConfig noise_used;
   WhiteNoiseEstimate noise_measured;
@@ -69,6 +73,10 @@ struct CalibrateOptions {
   // which the diagnosis needs (it pairs history[k] with imu[k]). A record costs about 0.5 kB, so an hour at
   // 1 kHz kept whole is 1.8 GB.
   std::size_t max_history_epochs = 0;
+  // Calibrate each half of the recording alone too, and call nothing converged whose halves disagree by
+  // more than 4 combined sigma (costs about one more run).
+  bool check_halves = false;
+  double min_halves_duration = 10.0;  // s; shorter recordings are not split
 };
 
 // The arithmetic overflowed on finite but absurd input: there is no result, not a NaN one.

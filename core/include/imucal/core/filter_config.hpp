@@ -55,8 +55,10 @@ struct FilterConfig {
   // the vertical channel appear to observe tilt, and the estimate then wanders along the tilt /
   // horizontal-bias direction that a still device cannot observe.
   bool gravity_linearization = true;
-  // Passes over the data; each later pass starts from the previous estimates (re-linearization).
-  int passes = 3;
+  // At most this many passes over the data; each later pass re-linearizes about the previous estimates
+  // and they stop once no estimate moves by 0.05 sigma. Large turns about several axes with misalignment
+  // terms need more than three to settle.
+  int passes = 8;
   // Passes after the first run without feedback, about the trajectory dead-reckoned with the previous
   // pass's parameters (a Gauss-Newton step), instead of as a fresh closed-loop filter.
   bool open_loop_refinement = true;
