@@ -12,6 +12,19 @@
 namespace imucal {
 
 namespace {
+// Heading from a part of a turn this short leaves the hard-iron centre unconstrained.
+constexpr double kMinHeadingArc = units::kPi / 2.0;
+// The raw x/y points of a device turned about any axis but the one the board's z points along still
+// spread; a still device's do not.
+constexpr double kMinRawArc = 20.0 * units::deg;
+// The geomagnetic field's magnitude is 22-67 uT everywhere on the Earth's surface (IGRF); a margin for
+// the fit's own error.
+constexpr double kMinEarthField = 15.0;
+constexpr double kMaxEarthField = 80.0;
+constexpr double kMinHorizontalField = 5.0;
+}  // namespace
+
+namespace {
 
 constexpr double kPi = units::kPi;
 
@@ -165,8 +178,10 @@ MagHeading headingFromMagnetometer(const std::vector<MagSample>& mag, const std:
   }
 
   MagHeading out;
-  // The circle fit on raw x/y checks the arc and starts the levelled fit.
-  out.fit = fitHorizontalHardIron(fields);
+  // The circle fit on raw x/y starts the levelled fit. Turned about a horizontal axis the board's x/y plane
+  // is not the horizontal one, so its arc only has to rule out a device that did not turn at all; the
+  // heading's own arc is checked after levelling.
+  out.fit = fitHorizontalHardIron(fields, options.levelled_fit ? kMinRawArc : kMinHeadingArc);
   const std::size_t n = fields.size();
   std::vector<double> heading(n), radial(n);
   double tilt_gain = std::tan(options.inclination);  // heading error per tilt error
@@ -201,6 +216,30 @@ MagHeading headingFromMagnetometer(const std::vector<MagSample>& mag, const std:
   out.fit.residual_rms = std::sqrt(sum_sq / static_cast<double>(n));
   out.fit.arc = coveredArc(heading);
   out.fit.points = static_cast<int>(n);
+  // The Earth's field, whatever the unit in the config says, and a horizontal part a turn can show: a fit
+  // that found neither (a wrong unit, iron next to the sensor, a still device whose points are one blob,
+  // a magnetic pole) gives headings that are noise, whatever arc they span.
+  if (options.levelled_fit) {
+    const double total = std::hypot(out.fit.radius, out.vertical);
+    const std::string field = std::to_string(total) + " uT (horizontal " + std::to_string(out.fit.radius) +
+                              ", vertical " + std::to_string(out.vertical) + ")";
+    if (total < kMinEarthField || total > kMaxEarthField) {
+      throw std::invalid_argument("magnetometer heading: the fitted field is " + field +
+                                  ", the Earth's is 22-67 uT: a wrong unit in the config (gauss read as uT?), "
+                                  "iron next to the sensor, or a device that did not turn");
+    }
+    if (out.fit.radius < kMinHorizontalField) {
+      throw std::invalid_argument("magnetometer heading: the fitted field is " + field + ", with less than " +
+                                  std::to_string(static_cast<int>(kMinHorizontalField)) +
+                                  " uT horizontal: the device did not turn about the vertical");
+    }
+  }
+  if (out.fit.arc < kMinHeadingArc) {
+    const auto degrees = [](double rad) { return std::to_string(static_cast<int>(std::lround(rad / units::deg))); };
+    throw std::invalid_argument("magnetometer heading: the levelled headings cover only " + degrees(out.fit.arc) +
+                                " deg of arc (need " + degrees(kMinHeadingArc) +
+                                "); turn the device further about the vertical");
+  }
 
   // One heading per bin (circular mean) and the spread of the bins' mean radial residual: the tangential
   // error of a levelled field behaves like its radial error (a tilt error moves the steep field's vertical

@@ -50,11 +50,28 @@ std::variant<std::int64_t, std::string> timestamp(std::string_view t) {
     if (t.front() == '(') return "time stamp '" + io::excerpt(t) + "' is not (seconds)";
     return std::string("no time stamp (record with candump -l or -ta to replay)");
   }
-  const io::ParsedNumber n = io::parseNumber(t.substr(1, t.size() - 2));
+  const std::string_view inner = t.substr(1, t.size() - 2);
+  const io::ParsedNumber n = io::parseNumber(inner);
   if (n.status != io::NumberStatus::Ok || !(n.value >= 0.0)) return "time stamp '" + io::excerpt(t) + "' is not (seconds)";
   if (n.value > kMaxTimestampS)
     return "time stamp '" + io::excerpt(t) + "' is beyond any clock (more than 1e11 s)";
-  return static_cast<std::int64_t>(n.value * 1e6 + 0.5);
+  // candump's own form, digits '.' digits, is read exactly: through a double, 8.7e9 s is no longer exact
+  // to the microsecond and a frame written back (formatCandumpLine) read differently (found by fuzzing).
+  const std::size_t dot = inner.find('.');
+  const std::string_view whole = inner.substr(0, dot);
+  const std::string_view fraction = dot == std::string_view::npos ? std::string_view() : inner.substr(dot + 1);
+  const auto digits = [](std::string_view d) {
+    for (char c : d)
+      if (c < '0' || c > '9') return false;
+    return true;
+  };
+  if (whole.empty() || !digits(whole) || !digits(fraction) || whole.size() > 12)
+    return static_cast<std::int64_t>(n.value * 1e6 + 0.5);
+  std::int64_t us = 0;
+  for (char c : whole) us = us * 10 + (c - '0');
+  for (std::size_t i = 0; i < 6; ++i) us = us * 10 + (i < fraction.size() ? fraction[i] - '0' : 0);
+  if (fraction.size() > 6 && fraction[6] >= '5') ++us;  // round half up at the seventh digit
+  return us;
 }
 
 // Identifier text: 3 hex digits = standard, 8 = extended (as candump prints them).

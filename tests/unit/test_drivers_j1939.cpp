@@ -361,5 +361,22 @@ TEST(DriversJ1939, SimulatedBusRoundTripsThroughCandumpToTheSimulatedSamples) {
   EXPECT_EQ(k, out.imu.size());
 }
 
+// Found by fuzzing: at 8.74e9 s a double no longer holds a microsecond, and the frame written back read
+// one microsecond off. candump's digits.digits form is now read exactly, to 1e11 s.
+TEST(Candump, TimeStampsRoundTripToTheMicrosecond) {
+  for (const char* stamp : {"(8740000000.002000)", "(99999999999.999999)", "(1700000000.000001)", "(0.000001)"}) {
+    const CandumpLine l = parseCandumpLine(std::string(stamp) + " can0 123#0102");
+    ASSERT_TRUE(l.frame) << stamp << ": " << l.error;
+    EXPECT_EQ(formatCandumpLine(*l.frame, "can0").substr(0, std::string(stamp).size()), stamp);
+    const CandumpLine again = parseCandumpLine(formatCandumpLine(*l.frame, "can0"));
+    ASSERT_TRUE(again.frame) << stamp;
+    EXPECT_EQ(again.frame->utime, l.frame->utime) << stamp;
+  }
+  const CandumpLine l = parseCandumpLine("(1700000000.1234565) can0 123#0102");
+  ASSERT_TRUE(l.frame);
+  EXPECT_EQ(l.frame->utime, 1700000000123457);  // rounded at the seventh digit
+  EXPECT_FALSE(parseCandumpLine("(100000000000.5) can0 123#0102").frame);
+}
+
 }  // namespace
 }  // namespace imucal::drivers

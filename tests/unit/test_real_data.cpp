@@ -257,5 +257,50 @@ TEST(RealData, NoHeadingCalibrationAgreesWithStillRecording) {
   EXPECT_GT(result.sigma(gyro + 2), 2.0 * calibrateRotate(true).sigma(gyro + 2));
 }
 
+// The magnetometer guard on the real turn: fields scaled as a wrong unit would scale them, out of the
+// Earth's 22-67 uT, are refused by name; the untouched recording passes (57 uT).
+TEST(RealData, MagnetometerFieldOutsideTheEarthsIsRefused) {
+  const Recording& r = rotateRecording();
+  const MagHeading ok = headingFromMagnetometer(r.mag, r.imu, r.config.mag_heading);
+  EXPECT_NEAR(std::hypot(ok.fit.radius, ok.vertical), 57.0, 5.0);
+  for (double factor : {0.01, 100.0}) {
+    std::vector<MagSample> scaled = r.mag;
+    for (auto& m : scaled) m.field *= factor;
+    try {
+      headingFromMagnetometer(scaled, r.imu, r.config.mag_heading);
+      ADD_FAILURE() << "a field scaled by " << factor << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("the Earth's is 22-67 uT"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// A still device's headings cover no arc: refused before any heading reaches the filter (the old raw
+// circle check let a 1.8 uT "horizontal field" through on a still recording).
+TEST(RealData, MagnetometerOnAStillDeviceIsRefused) {
+  const Recording& r = rotateRecording();
+  std::vector<ImuSample> imu;
+  std::vector<MagSample> mag;
+  for (int k = 0; k < 2000; ++k) {
+    ImuSample s = r.imu.front();
+    s.t = 0.01 * k;
+    s.accel = Vec3(0.0, 0.0, -9.81) + 0.01 * Vec3(std::sin(k * 1.3), std::cos(k * 0.7), std::sin(k * 2.1));
+    s.gyro.setZero();
+    imu.push_back(s);
+    MagSample m;
+    m.t = s.t;
+    m.field = Vec3(20.0, 5.0, 45.0) + 0.3 * Vec3(std::sin(k * 0.9), std::cos(k * 1.7), std::sin(k * 0.4));
+    mag.push_back(m);
+  }
+  try {
+    headingFromMagnetometer(mag, imu, r.config.mag_heading);
+    FAIL() << "headings from a still device were accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_TRUE(m.find("did not turn") != std::string::npos || m.find("deg of arc") != std::string::npos)
+        << m;
+  }
+}
+
 }  // namespace
 }  // namespace imucal
