@@ -4,17 +4,18 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
-#include <type_traits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/heading_model.hpp"
+#include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/lever_arm.hpp"
 #include "imucal/core/param_vector.hpp"
-#include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/static_detector.hpp"
+#include "imucal/core/units.hpp"
 
 namespace imucal {
 
@@ -152,10 +153,6 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   return out;
 }
 
-}  // namespace
-
-namespace {
-
 CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const std::vector<HeadingSample>& raw_heading,
                                 const FilterConfig& given, const CalibrateOptions& options) {
   validate(recording, raw_heading);
@@ -165,7 +162,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   if (!window.usable) {
     std::ostringstream msg;
     msg << "calibrate: no still stretch to level on: the quietest " << given.alignment_time << " s (from t = "
-        << recording[window.first].t << " s) has a gyro spread of " << window.gyro_spread * 180.0 / 3.14159265358979323846
+        << recording[window.first].t << " s) has a gyro spread of " << window.gyro_spread / units::deg
         << " deg/s and an accelerometer spread of " << window.accel_spread
         << " m/s^2; hold the device still for a moment before the motion";
     throw std::invalid_argument(msg.str());
