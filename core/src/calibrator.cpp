@@ -65,6 +65,8 @@ struct PassOutput {
   MeasurementStats stats;
   double log_likelihood = 0.0;
   std::vector<Eskf::Innovation> innovations;
+  std::vector<WhitenessGroup> whiteness;
+  IncrementConsistency increments;
 };
 
 PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
@@ -87,6 +89,10 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
 
   PassOutput out;
   if (keep_innovations) filter.setInnovationSink(&out.innovations);
+  InnovationWhiteness whiteness;
+  filter.setWhiteness(&whiteness);
+  IncrementConsistencyCheck increments(layout.paramCount());
+  filter.setIncrementCheck(&increments);
   const std::size_t stride =
       max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (imu.size() + max_history_epochs - 1) / max_history_epochs);
   out.history.reserve(imu.size() / stride + 2);
@@ -150,6 +156,8 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   out.params = filter.estimatedParams();
   out.P = filter.covariance();
   out.log_likelihood = filter.logLikelihood();
+  out.whiteness = whiteness.report();
+  out.increments = increments.report();
   return out;
 }
 
@@ -222,15 +230,52 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
 
   result.estimate = pass.params;
   result.sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
-  // Innovations larger than the model says (mean NIS above 1) mean noise or motion the model lacks: the
-  // sigmas grow by the square root of the worse channel's mean NIS, the usual covariance-matching factor.
-  const double nis = std::max({1.0, pass.stats.velocity_nis_mean, pass.stats.heading_nis_mean});
-  result.sigma_inflation = std::sqrt(nis);
-  if (result.sigma_inflation > 1.05) {
-    result.sigma *= result.sigma_inflation;
+  // Innovations larger than the model says (mean NIS above 1) mean noise or motion the model lacks: every
+  // sigma grows by the square root of the worst measurement type's mean NIS (covariance matching). Errors
+  // that last while the model calls them white show in the parameters' own increments instead (see
+  // increment_consistency.hpp): those parameters' sigmas grow by the square root of the variance ratio
+  // when it is beyond what a right model gives.
+  result.whiteness = pass.whiteness;
+  result.increments = pass.increments;
+  double nis_factor = 1.0;
+  std::string nis_type;
+  for (const WhitenessGroup& g : result.whiteness) {
+    if (g.nis_mean > nis_factor) {
+      nis_factor = g.nis_mean;
+      nis_type = g.name;
+    }
+  }
+  // Below 1.1 (sigmas 5 % larger) a mean NIS is within what chance gives a few hundred innovations.
+  if (nis_factor <= 1.1) nis_factor = 1.0;
+  const int count = layout.paramCount();
+  result.parameter_inflation = VecX::Constant(count, std::sqrt(nis_factor));
+  std::vector<std::string> lasting;
+  double worst_ratio = 0.0;
+  for (int j = 0; j < count; ++j) {
+    const double ratio = result.increments.variance_ratio.size() == count ? result.increments.variance_ratio(j) : 1.0;
+    if (result.increments.blocks == 0 || ratio <= result.increments.white_limit || ratio <= nis_factor) continue;
+    result.parameter_inflation(j) = std::sqrt(ratio);
+    lasting.push_back(result.names[static_cast<std::size_t>(j)]);
+    worst_ratio = std::max(worst_ratio, ratio);
+  }
+  result.sigma = result.sigma.cwiseProduct(result.parameter_inflation);
+  result.sigma_inflation = result.parameter_inflation.size() > 0 ? result.parameter_inflation.maxCoeff() : 1.0;
+  if (nis_factor > 1.0) {
     std::ostringstream msg;
-    msg << "consistency: the innovations are " << nis << " times the variance the model gives them (mean NIS); "
-        << "every sigma is inflated by " << result.sigma_inflation;
+    msg << "consistency: the " << nis_type << " innovations are " << nis_factor
+        << " times the variance the model gives them (mean NIS); every sigma is inflated by " << std::sqrt(nis_factor);
+    result.warnings.push_back(msg.str());
+  }
+  if (!lasting.empty()) {
+    std::ostringstream msg;
+    msg << "consistency: the updates of";
+    for (std::size_t k = 0; k < lasting.size(); ++k) msg << (k == 0 ? " " : ", ") << lasting[k];
+    msg << " pushed the same way for seconds (over " << result.increments.blocks << " blocks of "
+        << result.increments.block_s << " s their sums varied up to " << worst_ratio
+        << " times what independent errors give, limit " << result.increments.white_limit
+        << "): the data hold errors that last, which the model counts as independent; those sigmas are inflated "
+           "by up to "
+        << std::sqrt(worst_ratio);
     result.warnings.push_back(msg.str());
   }
   result.stats = pass.stats;

@@ -50,9 +50,12 @@ void Eskf::refreshModel() {
   earth_.gravity_offset += model_.gravity_error;
 }
 
-void Eskf::record(int channel, double y, double s) {
+void Eskf::applyUpdate(int channel, double y, double s) {
+  dx_ += gain_ * y;
   log_likelihood_ -= 0.5 * (std::log(2.0 * 3.14159265358979323846 * s) + y * y / s);
   if (sink_ != nullptr) sink_->push_back({last_raw_.t, channel, y, s});
+  if (whiteness_ != nullptr) whiteness_->add(last_raw_.t, channel, y, s);
+  if (increments_ != nullptr) increments_->add(last_raw_.t, gain_.segment(StateLayout::kParamStart, layout_.paramCount()), y, s);
 }
 
 ImuSample Eskf::corrected(const ImuSample& raw) const {
@@ -92,18 +95,16 @@ void Eskf::scalarSelector(int index, double innovation, double variance, double&
   double s = 0.0;
   const double y = innovation - dx_(index);
   josephSelectorUpdate(P_, index, variance, gain_, s, has_considered_ ? &update_mask_ : nullptr);
-  dx_ += gain_ * y;
   nis += y * y / s;
-  record(channel_, y, s);
+  applyUpdate(channel_, y, s);
 }
 
 void Eskf::scalarRow(const StateVec& h, double innovation, double variance, double& nis) {
   double s = 0.0;
   const double y = innovation - h.dot(dx_);
   josephScalarUpdate(P_, h, variance, gain_, s, has_considered_ ? &update_mask_ : nullptr);
-  dx_ += gain_ * y;
   nis += y * y / s;
-  record(channel_, y, s);
+  applyUpdate(channel_, y, s);
 }
 
 double Eskf::updateCentre(int channel0, const Vec3& predicted, const Mat3& att_jacobian, const Mat3* gyro_bias_jacobian,
@@ -172,9 +173,8 @@ Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double ga
   if (gate_sigma > 0.0 && out.nis > gate_sigma * gate_sigma) return out;
   double s = 0.0;
   josephScalarUpdate(P_, h_, r, gain_, s, has_considered_ ? &update_mask_ : nullptr);
-  dx_ += gain_ * y;
   out.accepted = true;
-  record(Innovation::Heading, y, s_pred);
+  applyUpdate(Innovation::Heading, y, s);
   return out;
 }
 

@@ -41,6 +41,9 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
               {"not_converged_reason", i < result.not_converged_reason.size() ? result.not_converged_reason[i] : ""},
               {"convergence_time_s",
                k < result.convergence_time.size() ? numberOrNull(result.convergence_time(k)) : json(nullptr)}};
+    if (k < result.parameter_inflation.size()) p["sigma_inflation"] = numberOrNull(result.parameter_inflation(k));
+    if (k < result.increments.variance_ratio.size())
+      p["increment_variance_ratio"] = numberOrNull(result.increments.variance_ratio(k));
     if (k < result.prior_sigma.size()) {
       p["prior_sigma"] = numberOrNull(result.prior_sigma(k) / u.factor);
       p["prior_sigma_si"] = numberOrNull(result.prior_sigma(k));
@@ -74,6 +77,20 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
                          {"relative_sigma", m.relative_sigma}};
   }
   out["noise"] = noise;
+  json whiteness = json::array();
+  for (const WhitenessGroup& g : result.whiteness)
+    whiteness.push_back({{"measurement", g.name},
+                         {"innovations", g.innovations},
+                         {"nis_mean", numberOrNull(g.nis_mean)},
+                         {"block_s", numberOrNull(g.block_s)},
+                         {"blocks", g.blocks},
+                         {"long_run_variance", numberOrNull(g.long_run_variance)},
+                         {"white_limit", numberOrNull(g.white_limit)},
+                         {"white", g.white}});
+  out["innovations"] = whiteness;
+  out["increment_check"] = {{"block_s", numberOrNull(result.increments.block_s)},
+                            {"blocks", result.increments.blocks},
+                            {"white_limit", numberOrNull(result.increments.white_limit)}};
   if (!result.history.empty()) {
     const EpochRecord& last = result.history.back();
     out["final_state"] = {{"t", last.t},

@@ -18,11 +18,13 @@ namespace {
 
 const std::string kData = IMUCAL_TEST_DATA_DIR;
 
-// The board's config estimates the hand's lever arm; the diagnosis starts from the model without it, as a
-// user with a datasheet config would, and must find it.
+// The board's config estimates the full sensor model and the hand's lever arm; the diagnosis starts from
+// biases and gyro scale factors only, as a user with a datasheet config would, and must find the rest.
 io::CalibrateConfig boardConfig() {
   io::CalibrateConfig c = io::loadCalibrateConfig(kData + "/mpu6050_frd.yaml");
-  c.filter.model.estimate(ParamBlock::LeverArm, false);
+  for (ParamBlock b : {ParamBlock::LeverArm, ParamBlock::AccelScale, ParamBlock::AccelMisalignment,
+                       ParamBlock::GyroMisalignment, ParamBlock::GyroGSensitivity})
+    c.filter.model.estimate(b, false);
   return c;
 }
 

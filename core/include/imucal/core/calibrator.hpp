@@ -8,6 +8,8 @@
 
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/filter_config.hpp"
+#include "imucal/core/increment_consistency.hpp"
+#include "imucal/core/innovation_whiteness.hpp"
 #include "imucal/core/noise_from_data.hpp"
 #include "imucal/core/state_layout.hpp"
 #include "imucal/core/types.hpp"
@@ -44,8 +46,13 @@ struct CalibrationResult {
   std::vector<std::string> not_converged_reason;  // why not, per parameter ("" when converged)
   // Said once per calibration: what the result rests on that the user did not give (gravity...).
   std::vector<std::string> warnings;
-  // Factor the sigmas were multiplied by because the innovations were larger than modelled (1: none).
+  // Factor each sigma was multiplied by because the innovations were larger than modelled or the
+  // parameter's increments showed lasting errors (1: none), and the largest of them.
+  VecX parameter_inflation;
   double sigma_inflation = 1.0;
+  // NIS and whiteness of the final pass's innovations per measurement type, and the increments' check.
+  std::vector<WhitenessGroup> whiteness;
+  IncrementConsistency increments;
   // (a - b) / combined sigma of the two halves calibrated alone, per parameter (empty when not checked).
   VecX halves_z;
   // The noise the filter ran with, and what the still stretches said (valid when measured).

@@ -5,6 +5,8 @@
 
 #include "imucal/core/error_dynamics.hpp"
 #include "imucal/core/filter_config.hpp"
+#include "imucal/core/increment_consistency.hpp"
+#include "imucal/core/innovation_whiteness.hpp"
 #include "imucal/core/mechanization.hpp"
 #include "imucal/core/param_vector.hpp"
 #include "imucal/core/state_layout.hpp"
@@ -63,6 +65,10 @@ class Eskf {
     double s = 0.0;
   };
   void setInnovationSink(std::vector<Innovation>* sink) { sink_ = sink; }
+  // Every innovation also goes into this whiteness check when set (constant memory, unlike the sink).
+  void setWhiteness(InnovationWhiteness* whiteness) { whiteness_ = whiteness; }
+  // And each update's parameter increments into this check (see increment_consistency.hpp).
+  void setIncrementCheck(IncrementConsistencyCheck* check) { increments_ = check; }
 
   double time() const { return last_raw_.t; }
   const NavState& nav() const { return nav_; }
@@ -77,7 +83,8 @@ class Eskf {
  private:
   void scalarSelector(int index, double innovation, double variance, double& nis);
   void scalarRow(const StateVec& h, double innovation, double variance, double& nis);
-  void record(int channel, double y, double s);
+  // Adds the gain times innovation to the error state and tells every observer of updates.
+  void applyUpdate(int channel, double y, double s);
   // Re-derives the sensor model, its inverse gains and the gravity used from params_.
   void refreshModel();
   // Rows of the centre's position / velocity pseudo-observation for a lever arm (see lever_arm.hpp).
@@ -104,6 +111,8 @@ class Eskf {
   bool feedback_ = true;
   double log_likelihood_ = 0.0;
   std::vector<Innovation>* sink_ = nullptr;
+  InnovationWhiteness* whiteness_ = nullptr;
+  IncrementConsistencyCheck* increments_ = nullptr;
   int channel_ = 0;  // channel of the selector update in progress
 };
 
