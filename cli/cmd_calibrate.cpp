@@ -75,6 +75,7 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
   std::cout << "passes " << r.passes_run << ", heading updates " << r.stats.heading_updates << " (rejected "
             << r.stats.heading_rejected << ", mean NIS " << std::setprecision(2) << r.stats.heading_nis_mean
             << "), zero-velocity mean NIS " << r.stats.velocity_nis_mean << '\n';
+  for (const ParamCombination& c : r.combinations) std::cout << "determined only together: " << io::combinationText(c) << '\n';
 }
 
 // The history is for plots; more epochs than this show nothing more and cost 0.5 kB each.
@@ -102,6 +103,19 @@ void runCalibrateCommand(const CalibrateArgs& args) {
                     {"mag", args.input.mag}, {"config", args.config}};
   json["effective_config_yaml"] = io::calibrateConfigToYaml(config);
   json["refused"] = problems;
+  if (recording.clock.valid) {
+    const SampleClockEstimate& c = recording.clock;
+    json["timing"] = {{"time_base", recording.uniform_time_base ? "uniform grid" : "logged stamps"},
+                      {"rate_hz", c.rate},
+                      {"rate_sigma_ppm", c.rate_relative_sigma * 1e6},
+                      {"jitter_rms_ms", c.jitter_rms * 1e3},
+                      {"jitter_max_ms", c.jitter_max * 1e3},
+                      {"close_pairs", c.close_pairs},
+                      {"far_pairs", c.far_pairs},
+                      {"change_ratio", c.change_ratio},
+                      {"stamp_gap_ratio", c.stamp_gap_ratio},
+                      {"stamps_are_read_times", c.stamps_are_read_times}};
+  }
   io::writeJsonFile(args.out, json);
   if (!args.history.empty()) io::writeHistoryCsv(args.history, result);
 

@@ -1,5 +1,6 @@
 #include "recording_input.hpp"
 
+#include <cmath>
 #include <iostream>
 #include <stdexcept>
 
@@ -39,6 +40,24 @@ void warnIfPartial(const std::vector<double>& times, const std::vector<ImuSample
               << " % of the IMU's time span\n";
 }
 
+// A rate error e scales every integrated angle by 1 + e, as a gyro scale factor common to the axes does.
+void carryClockUncertainty(const std::string& path, const SampleClockEstimate& clock, FilterConfig& filter) {
+  if (!clock.valid) return;
+  const double e = clock.rate_relative_sigma;
+  BlockSettings& scale = filter.model[ParamBlock::GyroScale];
+  std::cout << path << ": uniform time base at " << clock.rate << " Hz (+- " << e * 1e6 << " ppm from the halves), stamps "
+            << clock.jitter_rms * 1e3 << " ms RMS about it" << '\n';
+  if (scale.mode != BlockMode::Off) {
+    scale.sigma = std::hypot(scale.sigma, e);
+  } else if (e > 1e-3) {
+    scale.mode = BlockMode::Consider;
+    scale.sigma = e;
+    std::cerr << "imucal: warning: " << path << ": the sample rate is uncertain by " << e * 1e6
+              << " ppm; gyro_scale is considered with that sigma so the biases carry it (estimate gyro_scale "
+                 "to learn it)\n";
+  }
+}
+
 }  // namespace
 
 Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) {
@@ -57,7 +76,9 @@ Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) 
                        [&](std::size_t i) { return args.lcm_log + ": IMU sample " + std::to_string(i + 1) + ": "; });
     warnIfPartial(headingTimes(r.heading), r.imu, args.lcm_log + " (heading)");
   } else {
-    r.imu = io::readImuCsv(args.imu, config.imu);
+    r.imu = io::readImuCsv(args.imu, config.imu, &r.clock);
+    r.uniform_time_base = config.imu.retime_auto ? r.clock.stamps_are_read_times : config.imu.retime_uniformly;
+    if (r.uniform_time_base) carryClockUncertainty(args.imu, r.clock, config.filter);
   }
   if (!args.heading.empty() && !args.mag.empty()) {
     throw std::invalid_argument("give either --heading or --mag, not both");

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "imucal/core/sample_clock.hpp"
 #include "imucal/core/types.hpp"
 #include "imucal/io/config.hpp"
 
@@ -25,10 +26,15 @@ void addRecordingOptions(CLI::App& cmd, RecordingArgs& args);
 struct Recording {
   std::vector<ImuSample> imu;
   std::vector<HeadingSample> heading;
+  // What the IMU CSV's stamps said about the sample clock, and whether the uniform grid replaced them.
+  SampleClockEstimate clock;
+  bool uniform_time_base = false;
 };
 
 // Reads the recording; a magnetometer sets config.filter's heading sigma from its fit, and heading is
-// switched off in config.filter when there is none. Prints what it read.
+// switched off in config.filter when there is none. On the uniform grid the rate's uncertainty is a
+// scale factor common to the gyro axes: it widens the gyro scale prior, or is considered when the model
+// leaves gyro scale out. Prints what it read.
 Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config);
 
 // "imu.csv + heading.csv" or "log.lcm": for reports.

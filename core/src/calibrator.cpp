@@ -161,6 +161,45 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   return out;
 }
 
+// A parameter whose sigma is small only next to a generous prior, while most of its variance is that of
+// parameters the data did not settle (the accelerometer z bias beside the z scale on a level turn), is
+// known only in a combination with them: not converged, and the combination is reported instead.
+void markConfounded(CalibrationResult& result, std::vector<int>& unconverged) {
+  if (unconverged.empty()) return;
+  const auto m = static_cast<Eigen::Index>(unconverged.size());
+  MatX puu(m, m);
+  for (Eigen::Index a = 0; a < m; ++a)
+    for (Eigen::Index b = 0; b < m; ++b)
+      puu(a, b) = result.covariance(unconverged[static_cast<std::size_t>(a)], unconverged[static_cast<std::size_t>(b)]);
+  const Eigen::LDLT<MatX> solver(puu);
+  if (solver.info() != Eigen::Success) return;
+  std::vector<int> confounded;
+  for (int j = 0; j < static_cast<int>(result.converged.size()); ++j) {
+    if (!result.converged[static_cast<std::size_t>(j)]) continue;
+    VecX pju(m);
+    for (Eigen::Index a = 0; a < m; ++a) pju(a) = result.covariance(j, unconverged[static_cast<std::size_t>(a)]);
+    const VecX weights = solver.solve(pju);
+    const double share = pju.dot(weights) / result.covariance(j, j);
+    if (!(share > 0.5)) continue;
+    // Name the unconverged parameters that explain the most of it.
+    std::string with;
+    for (Eigen::Index a = 0; a < m; ++a) {
+      const double part = pju(a) * weights(a) / result.covariance(j, j);
+      if (part < 0.1) continue;
+      with += (with.empty() ? "" : ", ") + result.names[static_cast<std::size_t>(unconverged[static_cast<std::size_t>(a)])];
+    }
+    result.converged[static_cast<std::size_t>(j)] = false;
+    result.convergence_time(j) = std::numeric_limits<double>::quiet_NaN();
+    std::ostringstream reason;
+    reason << kConfoundedPrefix << (with.empty() ? "unconverged parameters" : with) << " (" << static_cast<int>(share * 100.0 + 0.5)
+           << " % of its variance is theirs)";
+    result.not_converged_reason[static_cast<std::size_t>(j)] = reason.str();
+    confounded.push_back(j);
+  }
+  unconverged.insert(unconverged.end(), confounded.begin(), confounded.end());
+  std::sort(unconverged.begin(), unconverged.end());
+}
+
 CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const std::vector<HeadingSample>& raw_heading,
                                 const FilterConfig& given, const CalibrateOptions& options) {
   validate(recording, raw_heading);
@@ -322,6 +361,16 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
     result.converged[j] = true;
     result.convergence_time(j) = selfConvergenceTime(t, x, s, 2.0 * result.sigma(j));
   }
+  const VecX& inflation = result.parameter_inflation;
+  result.covariance = inflation.asDiagonal() * pass.P.block(p0, p0, n, n) * inflation.asDiagonal();
+  std::vector<int> unconverged;
+  for (int j = 0; j < n; ++j)
+    if (!result.converged[static_cast<std::size_t>(j)] &&
+        layout.mode(layout.params()[static_cast<std::size_t>(j)].block) == BlockMode::Estimate)
+      unconverged.push_back(j);
+  markConfounded(result, unconverged);
+  result.combinations = determinedCombinations(result.names, result.estimate, result.covariance, result.prior_sigma,
+                                               unconverged, config.converged_sigma_ratio);
   return result;
 }
 

@@ -50,6 +50,7 @@ SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<
     if (!bias || result.converged[j]) continue;
     if (refs[j].block == ParamBlock::GyroBias && refs[j].component == 2) continue;
     if (result.not_converged_reason[j] == kLimitedByGravity) continue;
+    if (result.not_converged_reason[j].rfind(kConfoundedPrefix, 0) == 0) continue;  // reported as a combination
     out.failure = "session did not converge (" + result.names[j] + ": " + result.not_converged_reason[j] + ")";
     return out;
   }

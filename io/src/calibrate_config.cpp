@@ -86,7 +86,11 @@ ImuCsvFormat readImuFormat(YamlSection s) {
   f.gyro_axes = readAxes(s, "gyro_axes", f.gyro_axes);
   f.accel_reads_gravity = s.boolean("accel_reads_gravity", f.accel_reads_gravity);
   f.check_units = s.boolean("check_units", f.check_units);
-  f.retime_uniformly = readRetime(s, f.retime_uniformly);
+  const std::string retime = s.text("retime", f.retime_auto ? "auto" : (f.retime_uniformly ? "uniform" : "logged"));
+  if (retime != "uniform" && retime != "logged" && retime != "auto")
+    s.fail("retime", "unknown value '" + retime + "' (expected auto, uniform or logged)");
+  f.retime_auto = retime == "auto";
+  f.retime_uniformly = retime == "uniform";
   f.max_gap = s.number("max_gap_s", f.max_gap, Range::positive());
   s.finish();
   return f;

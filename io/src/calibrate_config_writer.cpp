@@ -38,7 +38,7 @@ void emitImu(YAML::Emitter& out, const ImuCsvFormat& f) {
   emitTexts(out, "gyro_axes", f.gyro_axes.entries());
   emitBool(out, "accel_reads_gravity", f.accel_reads_gravity);
   emitBool(out, "check_units", f.check_units);
-  emitText(out, "retime", f.retime_uniformly ? "uniform" : "logged");
+  emitText(out, "retime", f.retime_auto ? "auto" : (f.retime_uniformly ? "uniform" : "logged"));
   emitNumber(out, "max_gap_s", f.max_gap);
   out << YAML::EndMap;
 }

@@ -6,7 +6,7 @@
 
 namespace imucal::io {
 
-std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format) {
+std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format, SampleClockEstimate* clock) {
   const std::vector<std::string> names{format.time,    format.accel[0], format.accel[1], format.accel[2],
                                        format.gyro[0], format.gyro[1],  format.gyro[2]};
   checkDistinctColumns(path, names, {"time", "accel x", "accel y", "accel z", "gyro x", "gyro y", "gyro z"});
@@ -29,7 +29,11 @@ std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& f
   // The unit check first: a whole file in the wrong unit deserves that name, not "a corrupt row".
   if (format.check_units) checkImuUnits(path, samples, csv.lines, format);
   checkImuRange(path, samples, csv.lines);
-  if (format.retime_uniformly) retimeSamplesUniformly(samples);
+  SampleClockEstimate estimate;
+  if (format.retime_auto || clock != nullptr) estimate = estimateSampleClock(samples);
+  if (clock != nullptr) *clock = estimate;
+  const bool uniform = format.retime_auto ? estimate.stamps_are_read_times : format.retime_uniformly;
+  if (uniform) retimeSamplesUniformly(samples);
   return samples;
 }
 

@@ -1,5 +1,9 @@
 #include "imucal/io/param_units.hpp"
 
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
 namespace imucal::io {
 
 ParamUnit paramUnit(ParamBlock block) {
@@ -10,6 +14,24 @@ ParamUnit paramUnit(ParamBlock block) {
 ParamUnit paramUnit(const std::string& name) {
   if (const auto ref = findParam(name)) return paramUnit(ref->block);
   return {"si", "si", "si", 1.0};
+}
+
+std::string combinationText(const ParamCombination& c) {
+  if (c.terms.empty()) return "";
+  const ParamUnit lead = paramUnit(c.terms.front().first);
+  std::ostringstream out;
+  out << std::setprecision(3);
+  for (std::size_t i = 0; i < c.terms.size(); ++i) {
+    const double k = c.terms[i].second * paramUnit(c.terms[i].first).factor / lead.factor;
+    if (i == 0) {
+      out << c.terms[i].first;
+      continue;
+    }
+    out << (k < 0.0 ? " - " : " + ") << std::abs(k) << ' ' << c.terms[i].first;
+  }
+  out << std::setprecision(6) << " = " << c.value / lead.factor << " +- " << c.sigma / lead.factor << ' ' << lead.human
+      << " (prior +- " << c.prior_sigma / lead.factor << ")";
+  return out.str();
 }
 
 }  // namespace imucal::io

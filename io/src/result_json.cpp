@@ -88,6 +88,23 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
                          {"white_limit", numberOrNull(g.white_limit)},
                          {"white", g.white}});
   out["innovations"] = whiteness;
+  json combinations = json::array();
+  for (const ParamCombination& c : result.combinations) {
+    const ParamUnit lead = paramUnit(c.terms.front().first);
+    json terms = json::array();
+    for (const auto& [name, coefficient] : c.terms)
+      terms.push_back({{"parameter", name},
+                       {"coefficient_si", numberOrNull(coefficient)},
+                       // In human units: the lead's unit per unit of this parameter.
+                       {"coefficient", numberOrNull(coefficient * paramUnit(name).factor / lead.factor)}});
+    combinations.push_back({{"terms", terms},
+                            {"unit", lead.human},
+                            {"value", numberOrNull(c.value / lead.factor)},
+                            {"sigma", numberOrNull(c.sigma / lead.factor)},
+                            {"prior_sigma", numberOrNull(c.prior_sigma / lead.factor)},
+                            {"text", combinationText(c)}});
+  }
+  out["combinations"] = combinations;
   out["increment_check"] = {{"block_s", numberOrNull(result.increments.block_s)},
                             {"blocks", result.increments.blocks},
                             {"white_limit", numberOrNull(result.increments.white_limit)}};

@@ -258,15 +258,27 @@ TEST(Gravity, StandardGravityAssumedByTheOldDefaultIsFarOff) {
   EXPECT_GT(std::abs(zScore(r, "accel_bias_z", out.applied_errors.accel.bias.z())), 20.0);
 }
 
+// The paper motion with accelerometer scale factors, simulated and estimated (gravity known).
+struct ScaledPaper {
+  sim::SimOutput out;
+  FilterConfig cfg;
+};
+
+ScaledPaper scaledPaper() {
+  sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 7);
+  sc.imu.errors.accel.scale = Vec3(0.01, -0.015, 0.02);
+  ScaledPaper p{sim::simulate(sc, 7), FilterConfig{}};
+  p.cfg.earth.measured_gravity = units::kStandardGravity;  // the simulator's
+  p.cfg.model.estimate(ParamBlock::AccelScale);
+  return p;
+}
+
 TEST(Refinement, PassesKeepTheOriginalPriorOnUnobservableDirections) {
   // Accelerometer scale factors on the paper motion: z is seen only as b_z - g s_z, x and y not at all.
   // Each pass used to restart from the previous estimate with the full prior, walking along them.
-  sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 7);
-  sc.imu.errors.accel.scale = Vec3(0.01, -0.015, 0.02);
-  const sim::SimOutput out = sim::simulate(sc, 7);
-  FilterConfig cfg;
-  cfg.earth.measured_gravity = units::kStandardGravity;  // the simulator's
-  cfg.model.estimate(ParamBlock::AccelScale);
+  ScaledPaper p = scaledPaper();
+  const sim::SimOutput& out = p.out;
+  FilterConfig& cfg = p.cfg;
   cfg.passes = 6;
   const CalibrationResult r = calibrate(out.imu, out.heading, cfg);
   const double prior = cfg.model[ParamBlock::AccelScale].sigma;
@@ -280,6 +292,44 @@ TEST(Refinement, PassesKeepTheOriginalPriorOnUnobservableDirections) {
   // The z bias is confounded with the z scale: its sigma says so and its error is within it.
   EXPECT_GT(r.sigma(static_cast<Eigen::Index>(indexOf(r, "accel_bias_z"))), 0.5 * 9.8 * prior);
   EXPECT_LT(std::abs(zScore(r, "accel_bias_z", out.applied_errors.accel.bias.z())), 3.0);
+}
+
+TEST(Combinations, ZBiasAndZScaleOfALevelTurnAreReportedAsBzMinusGSz) {
+  // Level, the accelerometer z axis reads -g (1 + s_z) + b_z: the data fix b_z - g s_z and nothing else
+  // about the pair. Neither converges; the combination does, with the coefficient and value computed here.
+  const ScaledPaper p = scaledPaper();
+  const sim::SimOutput& out = p.out;
+  const FilterConfig& cfg = p.cfg;
+  const CalibrationResult r = calibrate(out.imu, out.heading, cfg);
+  const ParamCombination* found = nullptr;
+  for (const auto& c : r.combinations) {
+    bool bias = false, scale = false;
+    for (const auto& [name, k] : c.terms) {
+      bias = bias || name == "accel_bias_z";
+      scale = scale || name == "accel_scale_z";
+    }
+    if (bias && scale) found = &c;
+  }
+  ASSERT_NE(found, nullptr);
+  ASSERT_EQ(found->terms.size(), 2u);
+  EXPECT_FALSE(r.converged[indexOf(r, "accel_bias_z")]);
+  EXPECT_FALSE(r.converged[indexOf(r, "accel_scale_z")]);
+  // Written with its lead's coefficient 1: b_z - g s_z, or s_z - b_z / g.
+  const auto& [lead, one] = found->terms[0];
+  const auto& [other, k] = found->terms[1];
+  EXPECT_DOUBLE_EQ(one, 1.0);
+  const double b = out.applied_errors.accel.bias.z(), s_z = out.applied_errors.accel.scale.z();
+  const double g = units::kStandardGravity;
+  double truth = 0.0;
+  if (lead == "accel_bias_z") {
+    EXPECT_NEAR(k, -g, 0.01 * g);
+    truth = b - g * s_z;
+  } else {
+    EXPECT_NEAR(k, -1.0 / g, 0.01 / g);
+    truth = s_z - b / g;
+  }
+  EXPECT_LT(found->sigma, cfg.converged_sigma_ratio * found->prior_sigma);
+  EXPECT_LE(std::abs(found->value - truth), 4.0 * found->sigma) << found->value << " vs " << truth;
 }
 
 TEST(Consider, ALeftOutBlockStillWidensTheSigmasItConfounds) {

@@ -205,9 +205,15 @@ TEST(RealData, LevelledMagnetometerFitHasNoOneCyclePerTurnError) {
   EXPECT_LT(mh.sigma, 2.0 * after.rms);
 }
 
+// The z turn with the model a level turn can settle: biases, gyro scale and lever arm. With the board's full
+// model the gyro x / y biases are confounded with the g-sensitivity (z always up: G_xz g reads as a bias)
+// and reported as combinations instead (GyroBiasesOfEveryTurnAgreeWithTheStillRecording).
 CalibrationResult calibrateRotate(bool with_heading) {
   const Recording& r = rotateRecording();
   FilterConfig filter = r.config.filter;
+  for (ParamBlock b : {ParamBlock::AccelScale, ParamBlock::AccelMisalignment, ParamBlock::GyroMisalignment,
+                       ParamBlock::GyroGSensitivity})
+    filter.model.estimate(b, false);
   std::vector<HeadingSample> heading;
   if (with_heading) {
     const MagHeading mh = headingFromMagnetometer(r.mag, r.imu, r.config.mag_heading);
@@ -216,6 +222,17 @@ CalibrationResult calibrateRotate(bool with_heading) {
   }
   filter.measurements.heading = with_heading;
   return calibrate(r.imu, heading, filter);
+}
+
+// Converged, or known only together with parameters the motion did not settle: then the reason says so and
+// the combination is reported. Never silently unconverged.
+void expectConvergedOrInACombination(const CalibrationResult& result, std::size_t j, const std::string& label) {
+  if (result.converged[j]) return;
+  EXPECT_EQ(result.not_converged_reason[j].rfind(kConfoundedPrefix, 0), 0u) << label << ": " << result.not_converged_reason[j];
+  bool named = false;
+  for (const ParamCombination& comb : result.combinations)
+    for (const auto& term : comb.terms) named = named || term.first == result.names[j];
+  EXPECT_TRUE(named) << label << ' ' << result.names[j];
 }
 
 void expectGyroBiasesAgreeWithStill(const CalibrationResult& result, const char* label) {
@@ -244,15 +261,18 @@ TEST(RealData, MagnetometerHeadingCalibrationAgreesWithStillRecording) {
   EXPECT_GT(result.stats.heading_nis_mean, 0.5);
   EXPECT_LT(result.stats.heading_nis_mean, 2.0);
   const int gyro = StateLayout::kGyroBias - StateLayout::kParamStart;
-  for (int i = 0; i < 3; ++i) EXPECT_TRUE(result.converged[static_cast<std::size_t>(gyro + i)]) << "axis " << i;
+  EXPECT_TRUE(result.converged[static_cast<std::size_t>(gyro)]);
+  EXPECT_TRUE(result.converged[static_cast<std::size_t>(gyro + 1)]);
+  // The z bias is seen with the z scale, whose sigma the hand's lasting errors keep near its prior.
+  expectConvergedOrInACombination(result, static_cast<std::size_t>(gyro + 2), "with magnetometer");
 }
 
 TEST(RealData, NoHeadingCalibrationAgreesWithStillRecording) {
   const CalibrationResult result = calibrateRotate(false);
   expectGyroBiasesAgreeWithStill(result, "without heading");
   const int gyro = StateLayout::kGyroBias - StateLayout::kParamStart;
-  EXPECT_TRUE(result.converged[static_cast<std::size_t>(gyro)]);
-  EXPECT_TRUE(result.converged[static_cast<std::size_t>(gyro + 1)]);
+  expectConvergedOrInACombination(result, static_cast<std::size_t>(gyro), "without heading");
+  expectConvergedOrInACombination(result, static_cast<std::size_t>(gyro + 1), "without heading");
   // Without heading the z bias is seen only through the hand's tilt wobble (the turn axis leans by several
   // degrees): weakly, but honestly, so it may count as converged; its sigma is far larger than with heading.
   EXPECT_GT(result.sigma(gyro + 2), 2.0 * calibrateRotate(true).sigma(gyro + 2));
@@ -306,9 +326,9 @@ TEST(RealData, GyroBiasesOfEveryTurnAgreeWithTheStillRecording) {
       ++count;
     }
     std::cout << '\n';
-    // The axes the turn sweeps through gravity are always seen; each turn here reveals x and y.
-    EXPECT_TRUE(result.converged[static_cast<std::size_t>(gyro)]) << c.folder;
-    EXPECT_TRUE(result.converged[static_cast<std::size_t>(gyro + 1)]) << c.folder;
+    // With the full model a single turn leaves each gyro bias confounded with a misalignment or a
+    // g-sensitivity term: what is not converged must say so and appear in a reported combination.
+    for (int i = 0; i < 3; ++i) expectConvergedOrInACombination(result, static_cast<std::size_t>(gyro + i), c.folder);
   }
   EXPECT_LE(std::sqrt(sum_sq / count), 2.0);
 }

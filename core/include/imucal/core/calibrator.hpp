@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "imucal/core/combinations.hpp"
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/increment_consistency.hpp"
@@ -49,6 +50,10 @@ struct CalibrationResult {
   // Factor each sigma was multiplied by because the innovations were larger than modelled or the
   // parameter's increments showed lasting errors (1: none), and the largest of them.
   VecX parameter_inflation;
+  // Posterior covariance of the parameters (SI, inflated as sigma is), and the combinations of
+  // unconverged parameters the data determined (see combinations.hpp).
+  Eigen::MatrixXd covariance;
+  std::vector<ParamCombination> combinations;
   double sigma_inflation = 1.0;
   // NIS and whiteness of the final pass's innovations per measurement type, and the increments' check.
   std::vector<WhitenessGroup> whiteness;
@@ -73,6 +78,8 @@ struct CalibrationResult {
 
 // not_converged_reason of a parameter whose sigma is mostly the unknown gravity magnitude's.
 inline constexpr const char* kLimitedByGravity = "limited by the unknown gravity magnitude";
+// Start of the reason of a parameter whose variance is mostly that of unconverged ones (see combinations).
+inline constexpr const char* kConfoundedPrefix = "determined only in a combination with ";
 
 struct CalibrateOptions {
   bool keep_innovations = false;

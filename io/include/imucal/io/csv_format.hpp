@@ -24,6 +24,8 @@ struct ImuCsvFormat {
   bool check_units = true;
   // Replace the logged stamps by the sensor's uniform grid (see retime.hpp).
   bool retime_uniformly = false;
+  // `retime: auto`: let the data decide (see core/sample_clock.hpp); overrides retime_uniformly.
+  bool retime_auto = false;
   // A longer step between samples is a hole in the recording: refused (see timing_checks.hpp).
   double max_gap = 1.0;  // s
 };

@@ -4,13 +4,16 @@
 #include <vector>
 
 #include "imucal/core/magnetometer.hpp"
+#include "imucal/core/sample_clock.hpp"
 #include "imucal/core/types.hpp"
 #include "imucal/io/csv_format.hpp"
 
 namespace imucal::io {
 
 // Time must strictly increase; output is specific force (m/s^2) and rate (rad/s) in FRD.
-std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format = {});
+// clock (optional): what the logged stamps say about the sample clock (see core/sample_clock.hpp).
+std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format = {},
+                                  SampleClockEstimate* clock = nullptr);
 
 // Heading (rad, clockwise from north) wrapped into (-pi, pi].
 std::vector<HeadingSample> readHeadingCsv(const std::string& path, const HeadingCsvFormat& format = {});

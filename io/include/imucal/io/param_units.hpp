@@ -2,6 +2,7 @@
 // The human unit each calibration parameter is reported in, from the parameter registry.
 #include <string>
 
+#include "imucal/core/combinations.hpp"
 #include "imucal/core/param_registry.hpp"
 
 namespace imucal::io {
@@ -16,5 +17,9 @@ struct ParamUnit {
 ParamUnit paramUnit(ParamBlock block);
 // By the parameter's registry name; a name the registry does not define stays in SI (suffix "si").
 ParamUnit paramUnit(const std::string& name);
+
+// "accel_bias_z - 1.00 accel_scale_z = -2510 +- 40 ug (prior +- 80000)": coefficients in human units (the
+// lead's unit per unit of each term), value in the lead's.
+std::string combinationText(const ParamCombination& c);
 
 }  // namespace imucal::io
