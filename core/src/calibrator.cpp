@@ -161,10 +161,11 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   return out;
 }
 
-// A parameter whose sigma is small only next to a generous prior, while most of its variance is that of
-// parameters the data did not settle (the accelerometer z bias beside the z scale on a level turn), is
-// known only in a combination with them: not converged, and the combination is reported instead.
-void markConfounded(CalibrationResult& result, std::vector<int>& unconverged) {
+// A parameter most of whose variance is that of parameters the data did not settle, and which would miss
+// the convergence threshold if their priors were twice as wide (the accelerometer z bias beside the z
+// scale on a level turn), is known only in a combination with them: not converged, and the combination is
+// reported instead. One whose sigma stays far below the threshold either way keeps its verdict.
+void markConfounded(CalibrationResult& result, std::vector<int>& unconverged, double sigma_ratio) {
   if (unconverged.empty()) return;
   const auto m = static_cast<Eigen::Index>(unconverged.size());
   MatX puu(m, m);
@@ -181,6 +182,8 @@ void markConfounded(CalibrationResult& result, std::vector<int>& unconverged) {
     const VecX weights = solver.solve(pju);
     const double share = pju.dot(weights) / result.covariance(j, j);
     if (!(share > 0.5)) continue;
+    const double var_doubled = result.covariance(j, j) * ((1.0 - share) + 4.0 * share);
+    if (std::sqrt(var_doubled) <= sigma_ratio * result.prior_sigma(j)) continue;
     // Name the unconverged parameters that explain the most of it.
     std::string with;
     for (Eigen::Index a = 0; a < m; ++a) {
@@ -368,7 +371,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
     if (!result.converged[static_cast<std::size_t>(j)] &&
         layout.mode(layout.params()[static_cast<std::size_t>(j)].block) == BlockMode::Estimate)
       unconverged.push_back(j);
-  markConfounded(result, unconverged);
+  markConfounded(result, unconverged, config.converged_sigma_ratio);
   result.combinations = determinedCombinations(result.names, result.estimate, result.covariance, result.prior_sigma,
                                                unconverged, config.converged_sigma_ratio);
   return result;
