@@ -42,8 +42,8 @@ void warnIfPartial(const std::vector<double>& times, const std::vector<ImuSample
 
 // A rate error e scales every integrated angle by 1 + e, as a gyro scale factor common to the axes does.
 void carryClockUncertainty(const std::string& path, const SampleClockEstimate& clock, FilterConfig& filter) {
-  if (!clock.valid) return;
   const double e = clock.rate_relative_sigma;
+  if (!clock.valid || !std::isfinite(e)) return;
   BlockSettings& scale = filter.model[ParamBlock::GyroScale];
   std::cout << path << ": uniform time base at " << clock.rate << " Hz (+- " << e * 1e6 << " ppm from the halves), stamps "
             << clock.jitter_rms * 1e3 << " ms RMS about it" << '\n';

@@ -13,7 +13,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   format.check_units = (pick & 0x20) == 0;
   format.retime_uniformly = (pick & 0x40) != 0;
   format.accel_reads_gravity = (pick & 0x80) != 0;
-  const auto samples = imucal::fuzz::readSamples(imucal::io::readImuCsv, "imu.csv", format, data + 1, size - 1);
+  format.retime_auto = pick / 18 % 3 == 0;  // the sample clock's analysis decides
+  imucal::SampleClockEstimate clock;
+  const auto read = [&clock](const std::string& path, const imucal::io::ImuCsvFormat& f) {
+    return imucal::io::readImuCsv(path, f, &clock);
+  };
+  const auto samples = imucal::fuzz::readSamples(read, "imu.csv", format, data + 1, size - 1);
   if (!samples) return 0;
   for (const auto& s : *samples)
     imucal::fuzz::expect(s.accel.allFinite() && s.gyro.allFinite(), "accel and gyro are finite");
