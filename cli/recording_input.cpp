@@ -77,7 +77,7 @@ Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) 
     warnIfPartial(headingTimes(r.heading), r.imu, args.lcm_log + " (heading)");
   } else {
     r.imu = io::readImuCsv(args.imu, config.imu, &r.clock);
-    r.uniform_time_base = config.imu.retime_auto ? r.clock.stamps_are_read_times : config.imu.retime_uniformly;
+    r.uniform_time_base = io::retimesUniformly(config.imu, r.clock);
     if (r.uniform_time_base) carryClockUncertainty(args.imu, r.clock, config.filter);
   }
   if (!args.heading.empty() && !args.mag.empty()) {

@@ -52,11 +52,16 @@ BlockMode readBlockMode(YamlSection& s, const std::string& key, BlockMode fallba
   s.fail(key, "unknown value '" + value + "' (expected estimate, consider or off; true = estimate, false = off)");
 }
 
-// `retime: uniform` or `retime: logged` (keep the stamps as written).
-bool readRetime(YamlSection& s, bool fallback) {
-  const std::string value = s.text("retime", fallback ? "uniform" : "logged");
-  if (value != "uniform" && value != "logged") s.fail("retime", "unknown value '" + value + "' (expected uniform or logged)");
-  return value == "uniform";
+// `retime: uniform` or `retime: logged` (keep the stamps as written); with `automatic`, also `retime: auto`
+// (the stamps' own analysis decides).
+void readRetime(YamlSection& s, bool& uniform, bool* automatic = nullptr) {
+  const bool was_auto = automatic != nullptr && *automatic;
+  const std::string value = s.text("retime", was_auto ? "auto" : (uniform ? "uniform" : "logged"));
+  const bool is_auto = automatic != nullptr && value == "auto";
+  if (value != "uniform" && value != "logged" && !is_auto)
+    s.fail("retime", "unknown value '" + value + "' (expected " + (automatic != nullptr ? "auto, " : "") + "uniform or logged)");
+  uniform = value == "uniform";
+  if (automatic != nullptr) *automatic = is_auto;
 }
 
 ImuCsvFormat readImuFormat(YamlSection s) {
@@ -86,11 +91,7 @@ ImuCsvFormat readImuFormat(YamlSection s) {
   f.gyro_axes = readAxes(s, "gyro_axes", f.gyro_axes);
   f.accel_reads_gravity = s.boolean("accel_reads_gravity", f.accel_reads_gravity);
   f.check_units = s.boolean("check_units", f.check_units);
-  const std::string retime = s.text("retime", f.retime_auto ? "auto" : (f.retime_uniformly ? "uniform" : "logged"));
-  if (retime != "uniform" && retime != "logged" && retime != "auto")
-    s.fail("retime", "unknown value '" + retime + "' (expected auto, uniform or logged)");
-  f.retime_auto = retime == "auto";
-  f.retime_uniformly = retime == "uniform";
+  readRetime(s, f.retime_uniformly, &f.retime_auto);
   f.max_gap = s.number("max_gap_s", f.max_gap, Range::positive());
   s.finish();
   return f;
@@ -120,7 +121,7 @@ void readMagnetometer(YamlSection s, MagCsvFormat& f, MagHeadingOptions& o) {
   f.unit = readUnit(s, "unit", f.unit, parseMagUnit, magUnitChoices());
   f.axes = readAxes(s, "axes", f.axes);
   f.check_units = s.boolean("check_units", f.check_units);
-  f.retime_uniformly = readRetime(s, f.retime_uniformly);
+  readRetime(s, f.retime_uniformly);
   o.declination = s.number("declination_deg", o.declination / deg, Range::between(-180.0, 180.0)) * deg;
   o.tilt_window = s.number("tilt_window_s", o.tilt_window, Range::positive());
   o.tilt_sigma = s.number("tilt_sigma_deg", o.tilt_sigma / deg, Range::nonNegative()) * deg;

@@ -32,9 +32,12 @@ std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& f
   SampleClockEstimate estimate;
   if (format.retime_auto || clock != nullptr) estimate = estimateSampleClock(samples);
   if (clock != nullptr) *clock = estimate;
-  const bool uniform = format.retime_auto ? estimate.stamps_are_read_times : format.retime_uniformly;
-  if (uniform) retimeSamplesUniformly(samples);
+  if (retimesUniformly(format, estimate)) retimeSamplesUniformly(samples);
   return samples;
+}
+
+bool retimesUniformly(const ImuCsvFormat& format, const SampleClockEstimate& clock) {
+  return format.retime_auto ? clock.stamps_are_read_times : format.retime_uniformly;
 }
 
 }  // namespace imucal::io

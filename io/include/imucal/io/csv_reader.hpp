@@ -14,6 +14,8 @@ namespace imucal::io {
 // clock (optional): what the logged stamps say about the sample clock (see core/sample_clock.hpp).
 std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format = {},
                                   SampleClockEstimate* clock = nullptr);
+// Whether readImuCsv put the samples on the uniform grid, given what their stamps said.
+bool retimesUniformly(const ImuCsvFormat& format, const SampleClockEstimate& clock);
 
 // Heading (rad, clockwise from north) wrapped into (-pi, pi].
 std::vector<HeadingSample> readHeadingCsv(const std::string& path, const HeadingCsvFormat& format = {});
