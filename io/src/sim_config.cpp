@@ -94,6 +94,8 @@ sim::MotionConfig readMotion(YamlSection& top) {
   motion.lever_arm = s.vector3("lever_arm_m", motion.lever_arm, false);
   YamlSection j = s.section("jitter");
   motion.jitter.amplitude = j.number("amplitude_deg", motion.jitter.amplitude / deg, Range::nonNegative()) * deg;
+  motion.jitter.translation =
+      j.number("translation_mm", motion.jitter.translation * 1e3, Range::nonNegative()) * 1e-3;
   motion.jitter.bandwidth = j.number("bandwidth_hz", motion.jitter.bandwidth, Range::positive());
   motion.jitter.components = j.integer("components", motion.jitter.components, Range::atLeast(1));
   j.finish();

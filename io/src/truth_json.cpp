@@ -39,6 +39,7 @@ json motionJson(const sim::MotionConfig& m) {
           {"jitter",
            {{"amplitude_deg", m.jitter.amplitude / deg},
             {"amplitude_rad", m.jitter.amplitude},
+            {"translation_m", m.jitter.translation},
             {"bandwidth_hz", m.jitter.bandwidth},
             {"components", m.jitter.components}}}};
 }

@@ -87,29 +87,37 @@ Motion::Motion(MotionConfig config, EarthModel earth, std::uint64_t jitter_seed)
   }
 
   const HandJitter& jit = config_.jitter;
-  if (!(jit.amplitude > 0.0)) return;
+  if (!(jit.amplitude > 0.0) && !(jit.translation > 0.0)) return;
   if (jit.components < 1) throw std::invalid_argument("hand jitter needs at least one component");
   if (!(jit.bandwidth > kMinJitterHz))
     throw std::invalid_argument("hand jitter bandwidth must exceed 0.2 Hz");
+  if (!(jit.amplitude >= 0.0) || !(jit.translation >= 0.0))
+    throw std::invalid_argument("hand jitter amplitudes must be >= 0");
   std::mt19937_64 rng(jitter_seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const auto n = static_cast<std::size_t>(jit.components);
-  jitter_amp_.assign(n, Vec3::Zero());
-  jitter_freq_.assign(n, Vec3::Zero());
-  jitter_phase_.assign(n, Vec3::Zero());
-  for (int i = 0; i < 3; ++i) {
-    double power = 0.0;
-    for (std::size_t c = 0; c < n; ++c) {
-      // bandwidth - u * span maps u in [0, 1) onto (0.2 Hz, bandwidth].
-      jitter_freq_[c](i) = kTwoPi * (jit.bandwidth - unit(rng) * (jit.bandwidth - kMinJitterHz));
-      jitter_phase_[c](i) = kTwoPi * unit(rng);
-      jitter_amp_[c](i) = 0.5 + 0.5 * unit(rng);
-      power += 0.5 * jitter_amp_[c](i) * jitter_amp_[c](i);
+  const auto draw = [&](double rms, std::vector<Vec3>& amp, std::vector<Vec3>& freq, std::vector<Vec3>& phase) {
+    amp.assign(n, Vec3::Zero());
+    freq.assign(n, Vec3::Zero());
+    phase.assign(n, Vec3::Zero());
+    for (int i = 0; i < 3; ++i) {
+      double power = 0.0;
+      for (std::size_t c = 0; c < n; ++c) {
+        // bandwidth - u * span maps u in [0, 1) onto (0.2 Hz, bandwidth].
+        freq[c](i) = kTwoPi * (jit.bandwidth - unit(rng) * (jit.bandwidth - kMinJitterHz));
+        phase[c](i) = kTwoPi * unit(rng);
+        amp[c](i) = 0.5 + 0.5 * unit(rng);
+        power += 0.5 * amp[c](i) * amp[c](i);
+      }
+      // Sinusoids of distinct frequencies add in power, so one factor sets the axis RMS exactly.
+      const double scale = rms / std::sqrt(power);
+      for (std::size_t c = 0; c < n; ++c) amp[c](i) *= scale;
     }
-    // Sinusoids of distinct frequencies add in power, so one factor sets the axis RMS exactly.
-    const double scale = jit.amplitude / std::sqrt(power);
-    for (std::size_t c = 0; c < n; ++c) jitter_amp_[c](i) *= scale;
-  }
+  };
+  // Drawn even at zero amplitude so that a seed's centre motion does not depend on the rotation's being on.
+  draw(jit.amplitude, jitter_amp_, jitter_freq_, jitter_phase_);
+  if (!(jit.amplitude > 0.0)) jitter_amp_.clear();
+  if (jit.translation > 0.0) draw(jit.translation, centre_amp_, centre_freq_, centre_phase_);
 }
 
 int Motion::segmentAt(double t) const {
@@ -173,7 +181,13 @@ TruthState Motion::at(double t) const {
   s.p_n = leverArmPosition(c, r_b);
   s.v_n = leverArmVelocity(c, omega, r_b);
   s.a_n = c * acc_b;
-  s.f_b = acc_b - c.transpose() * earth_.gravityNed();
+  if (!centre_amp_.empty() && inside) {
+    const JitterValue d = jitterAt(centre_amp_, centre_freq_, centre_phase_, tc);
+    s.p_n += d.j;
+    s.v_n += d.jdot;
+    s.a_n += d.jddot;
+  }
+  s.f_b = c.transpose() * (s.a_n - earth_.gravityNed());
   s.omega_ib_b = omega + c.transpose() * earth_.earthRateNed();
   return s;
 }

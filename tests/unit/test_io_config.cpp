@@ -56,7 +56,7 @@ const char* kFullSim = R"(# every key of a sim config
 motion:
   initial_euler_deg: [1, -2, 30]
   lever_arm_m: [0.1, 0, -0.05]
-  jitter: {amplitude_deg: 0.2, bandwidth_hz: 3, components: 5}
+  jitter: {amplitude_deg: 0.2, translation_mm: 4, bandwidth_hz: 3, components: 5}
   segments:
     - still: {duration_s: 5}
     - rotate: {axis: z, angle_deg: 360, duration_s: 10}
@@ -96,6 +96,7 @@ TEST(IoConfig, SimConfigConvertsEveryKeyToSi) {
   EXPECT_TRUE(m.initial_euler.isApprox(Vec3(1, -2, 30) * deg));
   EXPECT_TRUE(m.lever_arm.isApprox(Vec3(0.1, 0, -0.05)));
   EXPECT_DOUBLE_EQ(m.jitter.amplitude, 0.2 * deg);
+  EXPECT_DOUBLE_EQ(m.jitter.translation, 0.004);
   EXPECT_EQ(m.jitter.bandwidth, 3.0);
   EXPECT_EQ(m.jitter.components, 5);
   ASSERT_EQ(m.segments.size(), 4u);

@@ -43,6 +43,7 @@ MotionConfig busyMotion() {
                 rotate(Vec3::UnitX(), -0.7, 2.0, RateProfile::Constant), still(1.0)};
   m.lever_arm = Vec3(0.12, -0.05, 0.03);
   m.jitter.amplitude = 0.5 * units::deg;
+  m.jitter.translation = 0.01;
   m.jitter.bandwidth = 2.0;
   m.jitter.components = 8;
   return m;
@@ -207,6 +208,34 @@ TEST(Motion, JitterRmsMatchesAmplitudeAndIsDeterministic) {
   const Motion a(noisy, EarthModel{}, 3), b(noisy, EarthModel{}, 3), c(noisy, EarthModel{}, 4);
   EXPECT_EQ(a.at(12.3).q_nb.coeffs(), b.at(12.3).q_nb.coeffs());
   EXPECT_GT(angleBetween(a.at(12.3).q_nb, c.at(12.3).q_nb), 1e-6);
+}
+
+TEST(Motion, CentreTranslationRmsMatchesAndLeavesTheAttitudeAlone) {
+  MotionConfig drifting;
+  drifting.segments = {still(200.0)};
+  drifting.jitter.translation = 0.02;
+  drifting.jitter.bandwidth = 1.5;
+  drifting.jitter.components = 6;
+  Vec3 sum_sq = Vec3::Zero();
+  int n = 0;
+  for (std::uint64_t seed = 0; seed < 20; ++seed) {
+    const Motion m(drifting, EarthModel{}, seed);
+    for (int k = 0; k <= 10000; ++k, ++n) {
+      const TruthState s = m.at(0.02 * k);
+      ASSERT_EQ(s.q_nb.coeffs(), Quat::Identity().coeffs());
+      sum_sq += s.p_n.cwiseProduct(s.p_n);
+    }
+  }
+  const Vec3 rms = (sum_sq / n).cwiseSqrt();
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(rms(i), 0.02, 0.001) << i;
+  // A level still body that the hand moves feels that acceleration, nothing else: f = a - g (NED).
+  const TruthState s = Motion(drifting, EarthModel{}, 5).at(33.3);
+  EXPECT_GT(s.a_n.norm(), 1e-3);
+  EXPECT_NEAR((s.f_b - (s.a_n - Vec3(0.0, 0.0, kG))).norm(), 0.0, 1e-12);
+  // The rotation jitter of a seed does not change when the centre moves too.
+  MotionConfig both = busyMotion(), turning = busyMotion();
+  turning.jitter.translation = 0.0;
+  EXPECT_EQ(Motion(both, EarthModel{}, 9).at(3.3).q_nb.coeffs(), Motion(turning, EarthModel{}, 9).at(3.3).q_nb.coeffs());
 }
 
 TEST(Motion, RejectsInvalidSegments) {

@@ -24,6 +24,9 @@ struct Segment {
 
 struct HandJitter {
   double amplitude = 0.0;   // rad, RMS of each axis' small rotation
+  // m, RMS of each NED axis' displacement of the centre: the hand does not hold the centre still. Its own
+  // sinusoids (same bandwidth and count), drawn after the rotation's, so a seed's rotation is unchanged.
+  double translation = 0.0;
   double bandwidth = 2.0;   // Hz, upper frequency of the sum of sinusoids
   int components = 8;       // sinusoids per axis
 };
@@ -67,6 +70,8 @@ class Motion {
   std::vector<Quat> start_attitudes_;
   // Jitter: per axis, amplitudes, frequencies (rad/s) and phases of its sinusoids.
   std::vector<Vec3> jitter_amp_, jitter_freq_, jitter_phase_;
+  // Centre displacement: the same form, in NED.
+  std::vector<Vec3> centre_amp_, centre_freq_, centre_phase_;
 };
 
 }  // namespace imucal::sim
