@@ -181,11 +181,14 @@ TruthState Motion::at(double t) const {
   s.p_n = leverArmPosition(c, r_b);
   s.v_n = leverArmVelocity(c, omega, r_b);
   s.a_n = c * acc_b;
-  if (!centre_amp_.empty() && inside) {
+  if (!centre_amp_.empty()) {
+    // Outside [0, duration] the centre rests where it was at the boundary, as the attitude does.
     const JitterValue d = jitterAt(centre_amp_, centre_freq_, centre_phase_, tc);
     s.p_n += d.j;
-    s.v_n += d.jdot;
-    s.a_n += d.jddot;
+    if (inside) {
+      s.v_n += d.jdot;
+      s.a_n += d.jddot;
+    }
   }
   s.f_b = c.transpose() * (s.a_n - earth_.gravityNed());
   s.omega_ib_b = omega + c.transpose() * earth_.earthRateNed();

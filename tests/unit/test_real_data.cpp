@@ -394,8 +394,9 @@ TEST(RealData, AccelerometerOfEveryTurnReadsGravityInEveryStillOrientation) {
   const StillPose poses[] = {{"unmoved-with-x-pointing-forward-30s", "z"},
                              {"unmoved-with-z-pointing-front-and-x-up-30s", "x"},
                              {"unmoved-with-z-pointing-front-and-y-down-30s", "y"}};
-  const double drift_per_deg[] = {0.5e-3 * units::kStandardGravity, 0.5e-3 * units::kStandardGravity,
-                                  0.86e-3 * units::kStandardGravity};  // m/s^2 per deg C, FRD x y z
+  const Vec3 drift_per_deg = Vec3(0.5e-3, 0.5e-3, 0.86e-3) * units::kStandardGravity;  // m/s^2 per deg C, FRD
+  std::vector<PoseMean> means;
+  for (const StillPose& pose : poses) means.push_back(poseMean(pose.folder));
   double sum_sq = 0.0;
   int count = 0, tight = 0, corrected = 0;
   for (const TurnCase& c : {TurnCase{"rotate-ccw-around-z-pointing-up", true}, TurnCase{"rotate-ccw-around-x-pointing-forward", false},
@@ -403,8 +404,9 @@ TEST(RealData, AccelerometerOfEveryTurnReadsGravityInEveryStillOrientation) {
     const CalibrationResult& r = calibrateTurn(c);
     const double turn_temperature = meanTemperature(kData + "/real/" + c.folder + "/mpu6050.csv");
     std::cout << c.folder << " (mg: residual +- sigma, z):";
-    for (const StillPose& pose : poses) {
-      const PoseMean m = poseMean(pose.folder);
+    for (std::size_t k = 0; k < means.size(); ++k) {
+      const StillPose& pose = poses[k];
+      const PoseMean& m = means[k];
       const double residual = gravityResidual(r, filter, r.estimate, m.accel);
       // Central differences; the steps are far below any sigma, far above rounding.
       VecX jacobian(r.estimate.size());
@@ -419,7 +421,7 @@ TEST(RealData, AccelerometerOfEveryTurnReadsGravityInEveryStillOrientation) {
       // The reading's own axis carries the drift: the up axis's share of the magnitude.
       const Vec3 direction = m.accel.normalized();
       const double drift = std::abs(m.temperature - turn_temperature) *
-                           direction.cwiseAbs().dot(Vec3(drift_per_deg[0], drift_per_deg[1], drift_per_deg[2]));
+                           direction.cwiseAbs().dot(drift_per_deg);
       const double sigma = std::sqrt(calibration_var + drift * drift);
       const double z = residual / sigma;
       // Uncalibrated (every parameter at its prior mean), for scale.
