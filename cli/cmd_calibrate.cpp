@@ -53,6 +53,13 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
     std::cout << "noise measured on " << fixed1(r.noise_measured.still_seconds) << " s still: VRW "
               << std::setprecision(3) << r.noise_used.accel_white / units::m_per_s_per_sqrt_h << " m/s/sqrt(h), ARW "
               << r.noise_used.gyro_white / units::deg_per_sqrt_h << " deg/sqrt(h)\n";
+  if (r.bias_walk_measured.valid)
+    std::cout << "bias drift measured on a " << fixed1(r.bias_walk_measured.still_seconds)
+              << " s still run: accelerometer walk " << std::setprecision(3)
+              << r.bias_walk_measured.accel_walk_used / units::micro_g << " ug/sqrt(s) and instability "
+              << r.bias_walk_measured.accel_instability_used / units::micro_g << " ug, gyro walk "
+              << r.bias_walk_measured.gyro_walk_used / units::deg_per_h_per_sqrt_h << " deg/h/sqrt(h) and instability "
+              << r.bias_walk_measured.gyro_instability_used / units::deg_per_h << " deg/h (bounds one sigma above)\n";
   std::cout << "parameter        estimate        1-sigma   converged  t_conv_s" << (truth ? "      truth     error/sigma" : "")
             << '\n';
   for (std::size_t j = 0; j < r.names.size(); ++j) {

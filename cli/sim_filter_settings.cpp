@@ -1,13 +1,21 @@
 #include "sim_filter_settings.hpp"
 
+#include <cmath>
+
 namespace imucal::cli {
 
 FilterConfig filterMatchingSimulation(const sim::SimConfig& sim, FilterConfig base) {
   // One density per triad in the filter: the noisiest axis keeps the bound honest.
   base.noise.accel_white = sim.imu.accel_noise.white.maxCoeff();
   base.noise.gyro_white = sim.imu.gyro_noise.white.maxCoeff();
-  base.noise.accel_bias_walk = sim.imu.accel_noise.bias_random_walk.maxCoeff();
-  base.noise.gyro_bias_walk = sim.imu.gyro_noise.bias_random_walk.maxCoeff();
+  // A Gauss-Markov bias of steady-state sigma s and correlation time T steps like a walk of density
+  // s sqrt(2 / T) over times well below T, the filter's model of it.
+  const auto walk = [](const sim::TriadNoise& n) {
+    const double gm = n.bias_correlation_time > 0.0 ? 2.0 / n.bias_correlation_time : 0.0;
+    return std::sqrt((n.bias_random_walk.array().square() + gm * n.bias_instability.array().square()).maxCoeff());
+  };
+  base.noise.accel_bias_walk = walk(sim.imu.accel_noise);
+  base.noise.gyro_bias_walk = walk(sim.imu.gyro_noise);
   base.measurements.heading = sim.heading.enabled;
   if (sim.heading.enabled) base.measurements.heading_sigma = sim.heading.noise;
   base.measurements.heading_latency = sim.heading.latency;

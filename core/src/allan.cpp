@@ -1,6 +1,7 @@
 #include "imucal/core/allan.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -48,6 +49,11 @@ double allanModel(const NoiseTerms& t, double tau) {
   const double avar = b[0] * t.quantization * t.quantization + b[1] * t.white * t.white +
                       b[2] * t.bias_instability * t.bias_instability + b[3] * t.random_walk * t.random_walk;
   return std::sqrt(avar);
+}
+
+double equivalentRandomWalk(double random_walk, double bias_instability, double span) {
+  if (!(span > 0.0)) return random_walk;
+  return std::sqrt(random_walk * random_walk + 3.0 * kFlicker * bias_instability * bias_instability / span);
 }
 
 double noiseMisfit(const std::vector<AllanPoint>& points, const NoiseTerms& model) {
@@ -106,6 +112,26 @@ NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points) {
     // sigma of sqrt(c) from sigma of c (first order), where the coefficient is resolved.
     sigma = value > 0.0 ? std::sqrt(cov(j, j)) / (2.0 * value) : 0.0;
   };
+  // The unconstrained fit's covariance bounds every squared coefficient, clamped or not.
+  Eigen::Vector4d free_sigma = Eigen::Vector4d::Zero();
+  {
+    const auto rows = static_cast<Eigen::Index>(points.size());
+    Eigen::MatrixXd a(rows, 4);
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      const auto& p = points[static_cast<std::size_t>(i)];
+      const auto b = basis(p.tau);
+      const double w = std::sqrt(p.dof / 2.0) / (p.adev * p.adev);
+      for (Eigen::Index j = 0; j < 4; ++j) a(i, j) = w * b[static_cast<std::size_t>(j)];
+    }
+    const Eigen::Matrix4d normal = a.transpose() * a;
+    Eigen::FullPivLU<Eigen::Matrix4d> lu(normal);
+    if (rows >= 4 && lu.isInvertible()) free_sigma = lu.inverse().diagonal().cwiseMax(0.0).cwiseSqrt();
+  }
+  const auto upper = [&](int j) { return std::sqrt(std::max(c(j), 0.0) + free_sigma(j)); };
+  fit.upper.quantization = upper(0);
+  fit.upper.white = upper(1);
+  fit.upper.bias_instability = upper(2);
+  fit.upper.random_walk = upper(3);
   coefficient(0, fit.value.quantization, fit.sigma.quantization);
   coefficient(1, fit.value.white, fit.sigma.white);
   coefficient(2, fit.value.bias_instability, fit.sigma.bias_instability);

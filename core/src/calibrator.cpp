@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "imucal/core/allan.hpp"
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/heading_model.hpp"
@@ -239,7 +240,21 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
       result.warnings.push_back("noise: too little still data to measure the white noise; the configured "
                                 "densities are used");
     }
+    // Only a long still run shows the bias drift; otherwise the configured walk stands (a board's config
+    // carries what a long still recording of it measured).
+    result.bias_walk_measured = estimateBiasWalk(imu, still);
+    if (result.bias_walk_measured.valid) {
+      config.noise.accel_bias_walk = result.bias_walk_measured.accel_walk_used;
+      config.noise.accel_bias_instability = result.bias_walk_measured.accel_instability_used;
+      config.noise.gyro_bias_walk = result.bias_walk_measured.gyro_walk_used;
+      config.noise.gyro_bias_instability = result.bias_walk_measured.gyro_instability_used;
+    }
   }
+  // The filter's biases walk; a flicker floor becomes the walk that wanders as far over this recording.
+  const double span = imu.back().t - imu.front().t;
+  config.noise.accel_bias_walk =
+      equivalentRandomWalk(config.noise.accel_bias_walk, config.noise.accel_bias_instability, span);
+  config.noise.gyro_bias_walk = equivalentRandomWalk(config.noise.gyro_bias_walk, config.noise.gyro_bias_instability, span);
   result.noise_used = config.noise;
   std::vector<HeadingSample> heading = raw_heading;
   const HeadingErrors heading_errors{config.measurements.heading_bias, config.measurements.heading_latency};

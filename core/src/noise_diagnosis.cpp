@@ -36,14 +36,16 @@ double misfitRatio(const std::vector<AllanCurve>& curves, const std::string& sen
 
 void applyNoise(SensorHypothesis& model, bool gyro, const NoiseTerms& terms) {
   (gyro ? model.gyro_noise : model.accel_noise) = terms;
-  // The filter takes white noise and random walk; instability and quantization stay in the model (the
-  // simulator's) and show in the Allan comparison.
+  // The filter takes white noise, random walk and flicker floor (calibrate folds the floor into the walk);
+  // quantization stays in the model (the simulator's) and shows in the Allan comparison.
   if (gyro) {
     model.filter.noise.gyro_white = terms.white;
     model.filter.noise.gyro_bias_walk = terms.random_walk;
+    model.filter.noise.gyro_bias_instability = terms.bias_instability;
   } else {
     model.filter.noise.accel_white = terms.white;
     model.filter.noise.accel_bias_walk = terms.random_walk;
+    model.filter.noise.accel_bias_instability = terms.bias_instability;
   }
 }
 

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "imucal/core/allan.hpp"
+#include "imucal/core/static_detector.hpp"
+
 namespace imucal {
 
 WhiteNoiseEstimate estimateWhiteNoise(const std::vector<ImuSample>& imu, const std::vector<bool>& still,
@@ -71,6 +74,43 @@ WhiteNoiseEstimate estimateWhiteNoise(const std::vector<ImuSample>& imu, const s
   out.gyro_white_rms = std::sqrt(out.gyro_white.squaredNorm() / 3.0);
   // Asymptotic spread of a median of chi-square(1) values, halved for the square root.
   out.relative_sigma = 1.167 / std::sqrt(d);
+  out.valid = true;
+  return out;
+}
+
+BiasWalkEstimate estimateBiasWalk(const std::vector<ImuSample>& imu, const std::vector<bool>& still,
+                                  double min_seconds) {
+  BiasWalkEstimate out;
+  if (imu.size() != still.size() || imu.size() < 2) return out;
+  const std::vector<Segment> segments = segmentsOf(imu, still);
+  const Segment* longest = nullptr;
+  for (const auto& s : segments)
+    if (s.still && (longest == nullptr || s.end - s.start > longest->end - longest->start)) longest = &s;
+  if (longest == nullptr || longest->end - longest->start < min_seconds) return out;
+  std::vector<double> series[6];
+  for (const auto& s : imu) {
+    if (s.t < longest->start || s.t > longest->end) continue;
+    for (int k = 0; k < 3; ++k) {
+      series[k].push_back(s.accel(k));
+      series[3 + k].push_back(s.gyro(k));
+    }
+  }
+  if (series[0].size() < 100) return out;
+  out.still_seconds = longest->end - longest->start;
+  // The Allan deviation wants a uniform grid; the still detector's runs are of samples already put on one.
+  const double dt = out.still_seconds / static_cast<double>(series[0].size() - 1);
+  for (int k = 0; k < 6; ++k) {
+    const NoiseFit fit = fitNoiseTerms(allanDeviation(series[k], dt));
+    const bool accel = k < 3;
+    const int axis = k % 3;
+    (accel ? out.accel_walk : out.gyro_walk)(axis) = fit.value.random_walk;
+    (accel ? out.accel_walk_sigma : out.gyro_walk_sigma)(axis) = fit.sigma.random_walk;
+    (accel ? out.accel_instability : out.gyro_instability)(axis) = fit.value.bias_instability;
+    double& walk = accel ? out.accel_walk_used : out.gyro_walk_used;
+    double& instability = accel ? out.accel_instability_used : out.gyro_instability_used;
+    walk = std::max(walk, fit.upper.random_walk);
+    instability = std::max(instability, fit.upper.bias_instability);
+  }
   out.valid = true;
   return out;
 }

@@ -7,8 +7,10 @@ SensorHypothesis SensorHypothesis::fromFilter(const FilterConfig& filter) {
   h.filter = filter;
   h.gyro_noise.white = filter.noise.gyro_white;
   h.gyro_noise.random_walk = filter.noise.gyro_bias_walk;
+  h.gyro_noise.bias_instability = filter.noise.gyro_bias_instability;
   h.accel_noise.white = filter.noise.accel_white;
   h.accel_noise.random_walk = filter.noise.accel_bias_walk;
+  h.accel_noise.bias_instability = filter.noise.accel_bias_instability;
   return h;
 }
 

@@ -143,6 +143,12 @@ NoiseConfig readNoise(YamlSection s, NoiseConfig n) {
   n.gyro_bias_walk = s.number("gyro_bias_walk_deg_per_h_per_sqrt_h", n.gyro_bias_walk / units::deg_per_h_per_sqrt_h,
                               Range::nonNegative()) *
                      units::deg_per_h_per_sqrt_h;
+  n.accel_bias_instability =
+      s.number("accel_bias_instability_ug", n.accel_bias_instability / units::micro_g, Range::nonNegative()) *
+      units::micro_g;
+  n.gyro_bias_instability =
+      s.number("gyro_bias_instability_deg_per_h", n.gyro_bias_instability / units::deg_per_h, Range::nonNegative()) *
+      units::deg_per_h;
   n.from_data = s.boolean("from_data", n.from_data);
   s.finish();
   return n;

@@ -84,6 +84,8 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   emitNumber(out, "arw_deg_per_sqrt_h", f.noise.gyro_white / units::deg_per_sqrt_h);
   emitNumber(out, "accel_bias_walk_ug_per_sqrt_s", f.noise.accel_bias_walk / units::micro_g);
   emitNumber(out, "gyro_bias_walk_deg_per_h_per_sqrt_h", f.noise.gyro_bias_walk / units::deg_per_h_per_sqrt_h);
+  emitNumber(out, "accel_bias_instability_ug", f.noise.accel_bias_instability / units::micro_g);
+  emitNumber(out, "gyro_bias_instability_deg_per_h", f.noise.gyro_bias_instability / units::deg_per_h);
   emitBool(out, "from_data", f.noise.from_data);
   out << YAML::EndMap;
 

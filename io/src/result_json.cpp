@@ -68,13 +68,31 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
   const WhiteNoiseEstimate& m = result.noise_measured;
   json noise = {{"source", m.valid ? "still stretches of the recording" : "config"},
                 {"vrw_m_per_s_per_sqrt_h", numberOrNull(result.noise_used.accel_white / units::m_per_s_per_sqrt_h)},
-                {"arw_deg_per_sqrt_h", numberOrNull(result.noise_used.gyro_white / units::deg_per_sqrt_h)}};
+                {"arw_deg_per_sqrt_h", numberOrNull(result.noise_used.gyro_white / units::deg_per_sqrt_h)},
+                {"accel_bias_walk_ug_per_sqrt_s", numberOrNull(result.noise_used.accel_bias_walk / units::micro_g)},
+                {"gyro_bias_walk_deg_per_h_per_sqrt_h",
+                 numberOrNull(result.noise_used.gyro_bias_walk / units::deg_per_h_per_sqrt_h)},
+                {"accel_bias_instability_ug", numberOrNull(result.noise_used.accel_bias_instability / units::micro_g)},
+                {"gyro_bias_instability_deg_per_h", numberOrNull(result.noise_used.gyro_bias_instability / units::deg_per_h)}};
   if (m.valid) {
     const Vec3 vrw = m.accel_white / units::m_per_s_per_sqrt_h, arw = m.gyro_white / units::deg_per_sqrt_h;
     noise["measured"] = {{"still_s", m.still_seconds},
                          {"vrw_per_axis", {vrw.x(), vrw.y(), vrw.z()}},
                          {"arw_per_axis", {arw.x(), arw.y(), arw.z()}},
                          {"relative_sigma", m.relative_sigma}};
+  }
+  const BiasWalkEstimate& w = result.bias_walk_measured;
+  noise["bias_walk_source"] = w.valid ? "longest still run of the recording" : "config";
+  if (w.valid) {
+    const auto triad = [](const Vec3& v, double unit) { return json::array({v.x() / unit, v.y() / unit, v.z() / unit}); };
+    noise["bias_walk_measured"] = {
+        {"still_s", w.still_seconds},
+        {"accel_walk_ug_per_sqrt_s", triad(w.accel_walk, units::micro_g)},
+        {"accel_walk_sigma_ug_per_sqrt_s", triad(w.accel_walk_sigma, units::micro_g)},
+        {"accel_instability_ug", triad(w.accel_instability, units::micro_g)},
+        {"gyro_walk_deg_per_h_per_sqrt_h", triad(w.gyro_walk, units::deg_per_h_per_sqrt_h)},
+        {"gyro_walk_sigma_deg_per_h_per_sqrt_h", triad(w.gyro_walk_sigma, units::deg_per_h_per_sqrt_h)},
+        {"gyro_instability_deg_per_h", triad(w.gyro_instability, units::deg_per_h)}};
   }
   out["noise"] = noise;
   json whiteness = json::array();

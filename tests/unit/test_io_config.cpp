@@ -264,6 +264,8 @@ noise:
   arw_deg_per_sqrt_h: 0.5
   accel_bias_walk_ug_per_sqrt_s: 3
   gyro_bias_walk_deg_per_h_per_sqrt_h: 7
+  accel_bias_instability_ug: 40
+  gyro_bias_instability_deg_per_h: 12
 prior:
   tilt_deg: 3
   yaw_deg: 90
@@ -326,6 +328,8 @@ TEST(IoConfig, CalibrateConfigConvertsEveryKey) {
   EXPECT_DOUBLE_EQ(f.noise.gyro_white, 0.5 * deg / 60);
   EXPECT_DOUBLE_EQ(f.noise.accel_bias_walk, 3e-6 * g);
   EXPECT_DOUBLE_EQ(f.noise.gyro_bias_walk, 7 * deg / 3600 / 60);
+  EXPECT_DOUBLE_EQ(f.noise.accel_bias_instability, 40e-6 * g);
+  EXPECT_DOUBLE_EQ(f.noise.gyro_bias_instability, 12 * deg / 3600);
   EXPECT_DOUBLE_EQ(f.prior.tilt, 3 * deg);
   EXPECT_DOUBLE_EQ(f.prior.yaw, 90 * deg);
   EXPECT_DOUBLE_EQ(f.model[ParamBlock::AccelBias].sigma, 50e-3 * g);
@@ -421,6 +425,7 @@ TEST(IoConfig, CalibrateConfigRoundTripsThroughItsYaml) {
   near(b.filter.noise.accel_white, a.filter.noise.accel_white);
   near(b.filter.noise.gyro_white, a.filter.noise.gyro_white);
   near(b.filter.noise.gyro_bias_walk, a.filter.noise.gyro_bias_walk);
+  near(b.filter.noise.gyro_bias_instability, a.filter.noise.gyro_bias_instability);
   near(b.filter.model[ParamBlock::GyroBias].sigma, a.filter.model[ParamBlock::GyroBias].sigma);
   near(b.filter.model[ParamBlock::AccelBias].sigma, a.filter.model[ParamBlock::AccelBias].sigma);
   near(b.filter.measurements.heading_sigma, a.filter.measurements.heading_sigma);

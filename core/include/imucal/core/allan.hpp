@@ -28,6 +28,10 @@ double allanModel(const NoiseTerms& n, double tau);  // ADEV of the model at tau
 struct NoiseFit {
   NoiseTerms value;
   NoiseTerms sigma;  // 1-sigma of each coefficient (0 where clamped at zero)
+  // Each coefficient one sigma above its estimate, the squared coefficient's sigma taken from the fit with
+  // all four terms free: what the data cannot exclude, also for a term clamped at zero (a drift too small
+  // to see in the record is not known to be absent).
+  NoiseTerms upper;
   // Fit quality: sum over points of dof * (log(avar_data / avar_model))^2 / 2 (~ number of points when the
   // model fits).
   double misfit = 0.0;
@@ -35,6 +39,11 @@ struct NoiseFit {
 
 // Weighted least squares on the Allan variance (each point weighted by its dof), coefficients held >= 0.
 NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points);
+
+// The random walk whose Allan variance at tau = span equals that of a walk plus a flicker floor:
+// K_eq^2 = K^2 + 3 (2 ln 2 / pi) B^2 / span. A filter that models biases as random walks, run over span,
+// then lets a bias wander as far as the two terms together do.
+double equivalentRandomWalk(double random_walk, double bias_instability, double span);
 
 // Misfit (as above) of given terms against measured points.
 double noiseMisfit(const std::vector<AllanPoint>& points, const NoiseTerms& model);

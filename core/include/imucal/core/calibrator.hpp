@@ -60,9 +60,11 @@ struct CalibrationResult {
   IncrementConsistency increments;
   // (a - b) / combined sigma of the two halves calibrated alone, per parameter (empty when not checked).
   VecX halves_z;
-  // The noise the filter ran with, and what the still stretches said (valid when measured).
+  // The noise the filter ran with (its bias walks with the flicker floors folded in over the recording's
+  // span), and what the still stretches said (valid when measured).
   NoiseConfig noise_used;
   WhiteNoiseEstimate noise_measured;
+  BiasWalkEstimate bias_walk_measured;
   VecX convergence_time;           // s from the first sample; NaN where not converged
   // Index of the recording's first sample used (the start of its first quiet stretch); history[k] is
   // sample first_sample + k.

@@ -14,6 +14,11 @@ struct NoiseConfig {
   double gyro_white = 0.3 / 60.0 * 3.14159265358979323846 / 180.0;  // ARW, rad/sqrt(s)
   double accel_bias_walk = 0.0;                 // m/s^2/sqrt(s)
   double gyro_bias_walk = 0.0;                  // rad/s/sqrt(s)
+  // Flicker floors (bias instability, the Allan deviation's flat part / 0.664). The filter models a bias
+  // as a random walk only: calibrate runs it with the walk that wanders as far over the recording's span
+  // (equivalentRandomWalk in allan.hpp).
+  double accel_bias_instability = 0.0;          // m/s^2
+  double gyro_bias_instability = 0.0;           // rad/s
   // Measure the white densities on the recording's still stretches and use those (the values above are
   // then the fallback when there is too little still data); false pins the values above.
   bool from_data = true;
