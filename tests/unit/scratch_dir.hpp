@@ -7,16 +7,19 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <memory>
 #include <string>
 
 namespace imucal::testing {
 
 class ScratchDir {
  public:
-  explicit ScratchDir(const std::string& tag = "") {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "imucal_" + std::to_string(::getpid()) + "_" + (info ? std::string(info->test_suite_name()) + "_" + info->name() : "global");
-    if (!tag.empty()) name += "_" + tag;
+  explicit ScratchDir(const std::string& tag = "") : ScratchDir(ProcessWide{}, testName(tag)) {}
+  // For files several tests of one process share (see processScratchDir): named after the process only.
+  struct ProcessWide {};
+  ScratchDir(ProcessWide, const std::string& tag) {
+    std::string name = "imucal_" + std::to_string(::getpid()) + "_" + tag;
     for (char& c : name)
       if (c == '/') c = '_';  // parameterized test names
     path_ = std::filesystem::temp_directory_path() / name;
@@ -31,6 +34,7 @@ class ScratchDir {
   ScratchDir& operator=(const ScratchDir&) = delete;
 
   const std::filesystem::path& path() const { return path_; }
+  std::string string() const { return path_.string(); }
   std::string operator/(const std::string& name) const { return (path_ / name).string(); }
   // Writes `text` to NAME in the directory; returns its path.
   std::string write(const std::string& name, const std::string& text) const {
@@ -40,8 +44,21 @@ class ScratchDir {
   }
 
  private:
+  static std::string testName(const std::string& tag) {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    std::string name = info ? std::string(info->test_suite_name()) + "_" + info->name() : "global";
+    return tag.empty() ? name : name + "_" + tag;
+  }
   std::filesystem::path path_;
 };
+
+// One directory per tag for the whole test process, removed when it exits.
+inline const std::filesystem::path& processScratchDir(const std::string& tag) {
+  static std::map<std::string, std::unique_ptr<ScratchDir>> dirs;
+  auto& dir = dirs[tag];
+  if (!dir) dir = std::make_unique<ScratchDir>(ScratchDir::ProcessWide{}, tag);
+  return dir->path();
+}
 
 inline std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -5,12 +5,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <string>
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "cli_run.hpp"
-#include <string>
+#include "scratch_dir.hpp"
 
 namespace {
 
@@ -21,15 +22,10 @@ CommandRun run(const std::string& args) { return imucal::testing::runImucal(args
 
 class CliTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("imucal_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
   void write(const std::string& name, const std::string& text) const { std::ofstream(path(name)) << text; }
-  fs::path dir_;
+  imucal::testing::ScratchDir scratch_;
+  fs::path dir_ = scratch_.path();
 };
 
 const std::string kConfigs = std::string(IMUCAL_CONFIG_DIR) + "/";

@@ -19,19 +19,14 @@ namespace fs = std::filesystem;
 
 class DaemonService : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("imucal_service_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   ServiceConfig config() const {
     ServiceConfig c;
     c.filter.measurements.heading_sigma = 5.0 * units::deg;
     c.state_dir = dir_.string();
     return c;
   }
-  fs::path dir_;
+  imucal::testing::ScratchDir scratch_;
+  fs::path dir_ = scratch_.path();
 };
 
 // Feeds IMU and heading in time order, as the node would receive them; returns the number of state changes.

@@ -20,12 +20,6 @@ namespace fs = std::filesystem;
 
 class DaemonStore : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("imucal_store_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
   StoredCalibration sample() const {
     return {"imu0", 1.7e9, {"accel_bias_x", "gyro_bias_z"}, {0.44, -1.2e-3}, {1e-3, 2e-4}, {true, false}, {4.5, -1.0},
             "15-state"};
@@ -36,7 +30,8 @@ class DaemonStore : public ::testing::Test {
     s << in.rdbuf();
     return s.str();
   }
-  fs::path dir_;
+  imucal::testing::ScratchDir scratch_;
+  fs::path dir_ = scratch_.path();
 };
 
 TEST_F(DaemonStore, RoundTripLeavesNoTemporaryFile) {

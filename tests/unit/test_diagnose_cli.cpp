@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "cli_run.hpp"
+#include "scratch_dir.hpp"
 
 namespace {
 
@@ -20,8 +21,8 @@ using imucal::testing::runImucal;
 const std::string kConfigs = std::string(IMUCAL_CONFIG_DIR) + "/";
 
 TEST(DiagnoseCli, NamesAHiddenLeverArmAndWritesReportJsonAndPlots) {
-  const fs::path dir = fs::temp_directory_path() / ("imucal_diagnose_cli_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const imucal::testing::ScratchDir scratch;
+  const fs::path& dir = scratch.path();
   // The paper's simulation with a lever arm added to its motion.
   std::ifstream paper(kConfigs + "paper-sim.yaml");
   std::stringstream text;
@@ -64,7 +65,6 @@ TEST(DiagnoseCli, NamesAHiddenLeverArmAndWritesReportJsonAndPlots) {
   EXPECT_TRUE(fs::exists(dir / "report_plots" / "residuals_accel_x.svg"));
   const auto svg_size = fs::file_size(dir / "report_plots" / "residuals_accel_x.svg");
   EXPECT_GT(svg_size, 1000u);
-  fs::remove_all(dir);
 }
 
 }  // namespace

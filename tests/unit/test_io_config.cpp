@@ -9,6 +9,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/errors.hpp"
+#include "scratch_dir.hpp"
 
 namespace imucal::io {
 namespace {
@@ -18,18 +19,7 @@ using units::deg;
 constexpr double g = units::kStandardGravity;
 
 // One scratch directory per test process, removed again when the process exits.
-const fs::path& tempDir() {
-  struct Scratch {
-    fs::path path = fs::temp_directory_path() / ("imucal_test_io_config_" + std::to_string(::getpid()));
-    Scratch() { fs::create_directories(path); }
-    ~Scratch() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  };
-  static const Scratch scratch;
-  return scratch.path;
-}
+const fs::path& tempDir() { return imucal::testing::processScratchDir("test_io_config"); }
 
 std::string writeFile(const std::string& name, const std::string& content) {
   const fs::path path = tempDir() / name;

@@ -10,6 +10,7 @@
 #include "imucal/io/csv_reader.hpp"
 #include "imucal/io/csv_table.hpp"
 #include "imucal/io/csv_writer.hpp"
+#include "scratch_dir.hpp"
 
 namespace imucal::io {
 namespace {
@@ -18,18 +19,7 @@ namespace fs = std::filesystem;
 constexpr double g = units::kStandardGravity;
 
 // One scratch directory per test process, removed again when the process exits.
-const fs::path& tempDir() {
-  struct Scratch {
-    fs::path path = fs::temp_directory_path() / ("imucal_test_io_csv_" + std::to_string(::getpid()));
-    Scratch() { fs::create_directories(path); }
-    ~Scratch() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  };
-  static const Scratch scratch;
-  return scratch.path;
-}
+const fs::path& tempDir() { return imucal::testing::processScratchDir("test_io_csv"); }
 
 std::string writeFile(const std::string& name, const std::string& content) {
   const fs::path path = tempDir() / name;

@@ -13,6 +13,7 @@
 #include "imucal/io/csv_table.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/json_output.hpp"
+#include "scratch_dir.hpp"
 
 namespace imucal::io {
 namespace {
@@ -22,18 +23,7 @@ using units::deg;
 constexpr double g = units::kStandardGravity;
 
 // One scratch directory per test process, removed again when the process exits.
-const fs::path& tempDir() {
-  struct Scratch {
-    fs::path path = fs::temp_directory_path() / ("imucal_test_io_json_" + std::to_string(::getpid()));
-    Scratch() { fs::create_directories(path); }
-    ~Scratch() {
-      std::error_code ignored;
-      fs::remove_all(path, ignored);
-    }
-  };
-  static const Scratch scratch;
-  return scratch.path;
-}
+const fs::path& tempDir() { return imucal::testing::processScratchDir("test_io_json"); }
 
 std::string readText(const std::string& path) {
   std::ifstream in(path);

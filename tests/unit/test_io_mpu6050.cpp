@@ -14,6 +14,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/csv_reader.hpp"
+#include "scratch_dir.hpp"
 
 namespace imucal::io {
 namespace {
@@ -28,11 +29,10 @@ ImuCsvFormat boardFormat() { return loadCalibrateConfig(kData + "/mpu6050_frd.ya
 
 // One data row in the board's own file format.
 ImuSample boardRow(const std::string& row) {
+  const imucal::testing::ScratchDir scratch("row");
   const std::string path =
-      (fs::temp_directory_path() / ("imucal_test_io_mpu6050_" + std::to_string(::getpid()) + ".csv")).string();
-  std::ofstream(path) << "t_s,acc_x_g,acc_y_g,acc_z_g,gyro_x_dps,gyro_y_dps,gyro_z_dps,temp_c\n" << row << "\n";
+      scratch.write("row.csv", "t_s,acc_x_g,acc_y_g,acc_z_g,gyro_x_dps,gyro_y_dps,gyro_z_dps,temp_c\n" + row + "\n");
   const auto samples = readImuCsv(path, boardFormat());
-  fs::remove(path);
   EXPECT_EQ(samples.size(), 1u);
   return samples.at(0);
 }
