@@ -59,6 +59,11 @@ void checkFinite(const Eskf& filter, const std::vector<ImuSample>& imu, std::siz
   throw NonFiniteResult(msg.str());
 }
 
+// 1-sigma of the calibration parameters from a full state covariance.
+VecX paramSigmas(const MatX& P, const StateLayout& layout) {
+  return P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+}
+
 struct PassOutput {
   VecX params;
   StateMat P;
@@ -116,7 +121,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     EpochRecord e;
     e.t = imu[k].t;
     e.params = filter.estimatedParams();
-    e.sigmas = filter.covariance().diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+    e.sigmas = paramSigmas(filter.covariance(), layout);
     const NavState nav = filter.estimatedNav();
     e.euler = quatToEuler(nav.q_nb);
     e.velocity = nav.v;
@@ -204,6 +209,98 @@ void markConfounded(CalibrationResult& result, std::vector<int>& unconverged, do
   std::sort(unconverged.begin(), unconverged.end());
 }
 
+// Innovations larger than the model says (mean NIS above 1) mean noise or motion the model lacks: every
+// sigma grows by the square root of the worst measurement type's mean NIS (covariance matching). Errors
+// that last while the model calls them white show in the parameters' own increments instead (see
+// increment_consistency.hpp): those parameters' sigmas grow by the square root of the variance ratio
+// when it is beyond what a right model gives.
+void inflateForConsistency(CalibrationResult& result) {
+  double nis_factor = 1.0;
+  std::string nis_type;
+  for (const WhitenessGroup& g : result.whiteness) {
+    if (g.nis_mean > nis_factor) {
+      nis_factor = g.nis_mean;
+      nis_type = g.name;
+    }
+  }
+  // Below 1.1 (sigmas 5 % larger) a mean NIS is within what chance gives a few hundred innovations.
+  if (nis_factor <= 1.1) nis_factor = 1.0;
+  const int count = static_cast<int>(result.names.size());
+  result.parameter_inflation = VecX::Constant(count, std::sqrt(nis_factor));
+  std::vector<std::string> lasting;
+  double worst_ratio = 0.0;
+  for (int j = 0; j < count; ++j) {
+    const double ratio = result.increments.variance_ratio.size() == count ? result.increments.variance_ratio(j) : 1.0;
+    if (result.increments.blocks == 0 || ratio <= result.increments.white_limit || ratio <= nis_factor) continue;
+    result.parameter_inflation(j) = std::sqrt(ratio);
+    lasting.push_back(result.names[static_cast<std::size_t>(j)]);
+    worst_ratio = std::max(worst_ratio, ratio);
+  }
+  result.sigma = result.sigma.cwiseProduct(result.parameter_inflation);
+  result.sigma_inflation = result.parameter_inflation.size() > 0 ? result.parameter_inflation.maxCoeff() : 1.0;
+  if (nis_factor > 1.0) {
+    std::ostringstream msg;
+    msg << "consistency: the " << nis_type << " innovations are " << nis_factor
+        << " times the variance the model gives them (mean NIS); every sigma is inflated by " << std::sqrt(nis_factor);
+    result.warnings.push_back(msg.str());
+  }
+  if (!lasting.empty()) {
+    std::ostringstream msg;
+    msg << "consistency: the updates of";
+    for (std::size_t k = 0; k < lasting.size(); ++k) msg << (k == 0 ? " " : ", ") << lasting[k];
+    msg << " pushed the same way for seconds (over " << result.increments.blocks << " blocks of "
+        << result.increments.block_s << " s their sums varied up to " << worst_ratio
+        << " times what independent errors give, limit " << result.increments.white_limit
+        << "): the data hold errors that last, which the model counts as independent; those sigmas are inflated "
+           "by up to "
+        << std::sqrt(worst_ratio);
+    result.warnings.push_back(msg.str());
+  }
+}
+
+// Converged: estimated (not considered), sigma below sigma_ratio of its prior, and not mostly gravity's
+// uncertainty; with the time from which its estimate stayed within twice its final sigma.
+void markConverged(CalibrationResult& result, const StateMat& P, const StateLayout& layout, double sigma_ratio) {
+  const int n = layout.paramCount();
+  constexpr int p0 = StateLayout::kParamStart;
+  const int gravity = layout.paramOffset(ParamBlock::Gravity);
+  result.converged.assign(n, false);
+  result.not_converged_reason.assign(n, "");
+  result.convergence_time = VecX::Constant(n, std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> t, x, s;
+  for (const auto& e : result.history) t.push_back(e.t);
+  for (int j = 0; j < n; ++j) {
+    x.clear();
+    s.clear();
+    for (const auto& e : result.history) {
+      x.push_back(e.params(j));
+      s.push_back(e.sigmas(j));
+    }
+    if (layout.mode(layout.params()[static_cast<std::size_t>(j)].block) == BlockMode::Consider) {
+      result.not_converged_reason[j] = "considered, not estimated";
+      continue;
+    }
+    if (result.sigma(j) > sigma_ratio * result.prior_sigma(j)) {
+      result.not_converged_reason[j] = "sigma above " + std::to_string(sigma_ratio) + " of the prior";
+      continue;
+    }
+    // A parameter whose variance is mostly gravity's (the accelerometer z bias when g is unknown) says
+    // more about the assumed gravity than about the sensor.
+    if (gravity >= 0 && j != gravity) {
+      // Gravity's share of the variance (the inflation scales both alike).
+      const double p_jg = P(p0 + j, p0 + gravity);
+      const double var_g = P(p0 + gravity, p0 + gravity);
+      const double var = P(p0 + j, p0 + j);
+      if (var_g > 0.0 && p_jg * p_jg / var_g > 0.5 * var) {
+        result.not_converged_reason[j] = kLimitedByGravity;
+        continue;
+      }
+    }
+    result.converged[j] = true;
+    result.convergence_time(j) = selfConvergenceTime(t, x, s, 2.0 * result.sigma(j));
+  }
+}
+
 CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const std::vector<HeadingSample>& raw_heading,
                                 const FilterConfig& given, const CalibrateOptions& options) {
   validate(recording, raw_heading);
@@ -264,7 +361,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
 
   result.layout = layout;
   result.names = layout.paramNames();
-  result.prior_sigma = priorCovariance(config, layout, 0.0).diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+  result.prior_sigma = paramSigmas(priorCovariance(config, layout, 0.0), layout);
 
   // Every pass keeps the original prior: later passes only move the point the model is linearized at, so a
   // direction the data cannot see stays at its prior however many passes run.
@@ -277,7 +374,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
     const bool feedback = i == 0 || !config.open_loop_refinement;
     pass = runPass(imu, heading, still, config, params, i == 0 ? VecX() : prior_mean, feedback,
                    options.keep_innovations, options.max_history_epochs);
-    const VecX sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+    const VecX sigma = paramSigmas(pass.P, layout);
     const double change = ((pass.params - params).cwiseQuotient(sigma)).cwiseAbs().maxCoeff();
     params = pass.params;
     result.passes_run = i + 1;
@@ -286,99 +383,19 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   }
 
   result.estimate = pass.params;
-  result.sigma = pass.P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
-  // Innovations larger than the model says (mean NIS above 1) mean noise or motion the model lacks: every
-  // sigma grows by the square root of the worst measurement type's mean NIS (covariance matching). Errors
-  // that last while the model calls them white show in the parameters' own increments instead (see
-  // increment_consistency.hpp): those parameters' sigmas grow by the square root of the variance ratio
-  // when it is beyond what a right model gives.
+  result.sigma = paramSigmas(pass.P, layout);
   result.whiteness = pass.whiteness;
   result.increments = pass.increments;
-  double nis_factor = 1.0;
-  std::string nis_type;
-  for (const WhitenessGroup& g : result.whiteness) {
-    if (g.nis_mean > nis_factor) {
-      nis_factor = g.nis_mean;
-      nis_type = g.name;
-    }
-  }
-  // Below 1.1 (sigmas 5 % larger) a mean NIS is within what chance gives a few hundred innovations.
-  if (nis_factor <= 1.1) nis_factor = 1.0;
-  const int count = layout.paramCount();
-  result.parameter_inflation = VecX::Constant(count, std::sqrt(nis_factor));
-  std::vector<std::string> lasting;
-  double worst_ratio = 0.0;
-  for (int j = 0; j < count; ++j) {
-    const double ratio = result.increments.variance_ratio.size() == count ? result.increments.variance_ratio(j) : 1.0;
-    if (result.increments.blocks == 0 || ratio <= result.increments.white_limit || ratio <= nis_factor) continue;
-    result.parameter_inflation(j) = std::sqrt(ratio);
-    lasting.push_back(result.names[static_cast<std::size_t>(j)]);
-    worst_ratio = std::max(worst_ratio, ratio);
-  }
-  result.sigma = result.sigma.cwiseProduct(result.parameter_inflation);
-  result.sigma_inflation = result.parameter_inflation.size() > 0 ? result.parameter_inflation.maxCoeff() : 1.0;
-  if (nis_factor > 1.0) {
-    std::ostringstream msg;
-    msg << "consistency: the " << nis_type << " innovations are " << nis_factor
-        << " times the variance the model gives them (mean NIS); every sigma is inflated by " << std::sqrt(nis_factor);
-    result.warnings.push_back(msg.str());
-  }
-  if (!lasting.empty()) {
-    std::ostringstream msg;
-    msg << "consistency: the updates of";
-    for (std::size_t k = 0; k < lasting.size(); ++k) msg << (k == 0 ? " " : ", ") << lasting[k];
-    msg << " pushed the same way for seconds (over " << result.increments.blocks << " blocks of "
-        << result.increments.block_s << " s their sums varied up to " << worst_ratio
-        << " times what independent errors give, limit " << result.increments.white_limit
-        << "): the data hold errors that last, which the model counts as independent; those sigmas are inflated "
-           "by up to "
-        << std::sqrt(worst_ratio);
-    result.warnings.push_back(msg.str());
-  }
+  inflateForConsistency(result);
   result.stats = pass.stats;
   result.history = std::move(pass.history);
   result.log_likelihood = pass.log_likelihood;
   result.innovations = std::move(pass.innovations);
   result.duration = imu.back().t - imu.front().t;
 
+  markConverged(result, pass.P, layout, config.converged_sigma_ratio);
   const int n = layout.paramCount();
   constexpr int p0 = StateLayout::kParamStart;
-  const int gravity = layout.paramOffset(ParamBlock::Gravity);
-  result.converged.assign(n, false);
-  result.not_converged_reason.assign(n, "");
-  result.convergence_time = VecX::Constant(n, std::numeric_limits<double>::quiet_NaN());
-  std::vector<double> t, x, s;
-  for (const auto& e : result.history) t.push_back(e.t);
-  for (int j = 0; j < n; ++j) {
-    x.clear();
-    s.clear();
-    for (const auto& e : result.history) {
-      x.push_back(e.params(j));
-      s.push_back(e.sigmas(j));
-    }
-    if (layout.mode(layout.params()[static_cast<std::size_t>(j)].block) == BlockMode::Consider) {
-      result.not_converged_reason[j] = "considered, not estimated";
-      continue;
-    }
-    if (result.sigma(j) > config.converged_sigma_ratio * result.prior_sigma(j)) {
-      result.not_converged_reason[j] = "sigma above " + std::to_string(config.converged_sigma_ratio) + " of the prior";
-      continue;
-    }
-    // A parameter whose variance is mostly gravity's (the accelerometer z bias when g is unknown) says
-    // more about the assumed gravity than about the sensor.
-    if (gravity >= 0 && j != gravity) {
-      // Gravity's share of the variance (the inflation scales both alike).
-      const double p_jg = pass.P(p0 + j, p0 + gravity);
-      const double var_g = pass.P(p0 + gravity, p0 + gravity);
-      const double var = pass.P(p0 + j, p0 + j);
-      if (var_g > 0.0 && p_jg * p_jg / var_g > 0.5 * var) {
-        result.not_converged_reason[j] = kLimitedByGravity;
-        continue;
-      }
-    }
-    result.converged[j] = true;
-    result.convergence_time(j) = selfConvergenceTime(t, x, s, 2.0 * result.sigma(j));
-  }
   const VecX& inflation = result.parameter_inflation;
   result.covariance = inflation.asDiagonal() * pass.P.block(p0, p0, n, n) * inflation.asDiagonal();
   std::vector<int> unconverged;
