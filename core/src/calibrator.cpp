@@ -258,6 +258,40 @@ void inflateForConsistency(CalibrationResult& result) {
   }
 }
 
+// A pass that moves no estimate by more than this many sigma ends the refinement.
+constexpr double kSettledStep = 0.05;
+
+// The passes ran out while estimates still moved (steps signed, in sigma). Steps that alternate in sign
+// bracket the point the passes lead to, so at most the last step is left; steps the same way shrinking by
+// a ratio r leave step / (1 - r) (r capped at 0.95). A converged parameter with more than half a sigma to
+// go is not converged: its estimate is not yet where the data put it.
+void markUnsettled(CalibrationResult& result, const VecX& step, const VecX& previous_step) {
+  std::vector<std::string> moving;
+  for (Eigen::Index j = 0; j < step.size(); ++j) {
+    const auto k = static_cast<std::size_t>(j);
+    if (!result.converged[k]) continue;
+    const double last = std::abs(step(j)), before = std::abs(previous_step(j));
+    const bool alternating = step(j) * previous_step(j) < 0.0;
+    const double ratio = before > 0.0 ? std::min(last / before, 0.95) : 0.95;
+    const double to_go = alternating ? last : last / (1.0 - ratio);
+    if (to_go <= 0.5) continue;
+    std::ostringstream reason;
+    reason << kUnsettledPrefix << "the last pass moved it " << last << " sigma, about " << to_go << " to go";
+    result.converged[k] = false;
+    result.convergence_time(j) = std::numeric_limits<double>::quiet_NaN();
+    result.not_converged_reason[k] = reason.str();
+    moving.push_back(result.names[k]);
+  }
+  std::ostringstream msg;
+  msg << "passes: all " << result.passes_run << " ran and the estimates still moved (last step up to " << step.cwiseAbs().maxCoeff()
+      << " sigma); raise `passes`";
+  if (!moving.empty()) {
+    msg << "; not called converged:";
+    for (std::size_t k = 0; k < moving.size(); ++k) msg << (k == 0 ? " " : ", ") << moving[k];
+  }
+  result.warnings.push_back(msg.str());
+}
+
 // Converged: estimated (not considered), sigma below sigma_ratio of its prior, and not mostly gravity's
 // uncertainty; with the time from which its estimate stayed within twice its final sigma.
 void markConverged(CalibrationResult& result, const StateMat& P, const StateLayout& layout, double sigma_ratio) {
@@ -368,6 +402,10 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   const VecX prior_mean = priorMean(layout, config.model);
   VecX params = prior_mean;
   PassOutput pass;
+  // Each pass's step per parameter in sigma, the last two kept: where the passes run out before they settle
+  // they say how far the estimate still had to go.
+  VecX step = VecX::Zero(layout.paramCount()), previous_step = step;
+  bool settled = config.passes == 1;
   for (int i = 0; i < config.passes; ++i) {
     // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
     // about the dead-reckoned trajectory of the previous pass's parameters.
@@ -375,11 +413,15 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
     pass = runPass(imu, heading, still, config, params, i == 0 ? VecX() : prior_mean, feedback,
                    options.keep_innovations, options.max_history_epochs);
     const VecX sigma = paramSigmas(pass.P, layout);
-    const double change = ((pass.params - params).cwiseQuotient(sigma)).cwiseAbs().maxCoeff();
+    previous_step = step;
+    step = (pass.params - params).cwiseQuotient(sigma);
     params = pass.params;
     result.passes_run = i + 1;
     // Later passes only re-linearize; once the estimates stop moving they add nothing.
-    if (i > 0 && change < 0.05) break;
+    if (i > 0 && step.cwiseAbs().maxCoeff() < kSettledStep) {
+      settled = true;
+      break;
+    }
   }
 
   result.estimate = pass.params;
@@ -394,6 +436,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   result.duration = imu.back().t - imu.front().t;
 
   markConverged(result, pass.P, layout, config.converged_sigma_ratio);
+  if (!settled) markUnsettled(result, step, previous_step);
   const int n = layout.paramCount();
   constexpr int p0 = StateLayout::kParamStart;
   const VecX& inflation = result.parameter_inflation;

@@ -80,6 +80,8 @@ struct CalibrationResult {
 
 // not_converged_reason of a parameter whose sigma is mostly the unknown gravity magnitude's.
 inline constexpr const char* kLimitedByGravity = "limited by the unknown gravity magnitude";
+// Start of the reason of a parameter the passes were still moving when they ran out.
+inline constexpr const char* kUnsettledPrefix = "the passes had not settled: ";
 // Start of the reason of a parameter whose variance is mostly that of unconverged ones (see combinations).
 inline constexpr const char* kConfoundedPrefix = "determined only in a combination with ";
 

@@ -62,8 +62,9 @@ struct FilterConfig {
   bool gravity_linearization = true;
   // At most this many passes over the data; each later pass re-linearizes about the previous estimates
   // and they stop once no estimate moves by 0.05 sigma. Large turns about several axes with misalignment
-  // terms need more than three to settle.
-  int passes = 8;
+  // terms can need more than eight to settle; where the passes run out first, what still moved is not
+  // called converged (see calibrator.cpp).
+  int passes = 20;
   // Passes after the first run without feedback, about the trajectory dead-reckoned with the previous
   // pass's parameters (a Gauss-Newton step), instead of as a fresh closed-loop filter.
   bool open_loop_refinement = true;
