@@ -71,6 +71,17 @@ NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points) {
   // Relative errors: each AVAR point is known to sqrt(2 / dof) of itself, so the rows are divided by the
   // measured AVAR and weighted by sqrt(dof / 2). Linear in the squared coefficients; those that come out
   // negative are dropped and the rest refitted (an active-set non-negative least squares on 4 unknowns).
+  const auto rows = static_cast<Eigen::Index>(points.size());
+  Eigen::MatrixXd design(rows, 4);  // weighted rows of all four terms
+  Eigen::VectorXd y(rows);
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    const auto& p = points[static_cast<std::size_t>(i)];
+    const double avar = p.adev * p.adev;
+    const double w = std::sqrt(p.dof / 2.0) / avar;
+    const auto b = basis(p.tau);
+    for (Eigen::Index j = 0; j < 4; ++j) design(i, j) = w * b[static_cast<std::size_t>(j)];
+    y(i) = w * avar;
+  }
   std::array<bool, 4> active{true, true, true, true};
   Eigen::Vector4d c = Eigen::Vector4d::Zero();
   Eigen::Matrix4d cov = Eigen::Matrix4d::Zero();
@@ -79,17 +90,8 @@ NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points) {
     for (int j = 0; j < 4; ++j)
       if (active[static_cast<std::size_t>(j)]) idx.push_back(j);
     if (idx.empty()) break;
-    const auto rows = static_cast<Eigen::Index>(points.size());
     Eigen::MatrixXd a(rows, static_cast<Eigen::Index>(idx.size()));
-    Eigen::VectorXd y(rows);
-    for (Eigen::Index i = 0; i < rows; ++i) {
-      const auto& p = points[static_cast<std::size_t>(i)];
-      const double avar = p.adev * p.adev;
-      const double w = std::sqrt(p.dof / 2.0) / avar;
-      const auto b = basis(p.tau);
-      for (std::size_t j = 0; j < idx.size(); ++j) a(i, static_cast<Eigen::Index>(j)) = w * b[static_cast<std::size_t>(idx[j])];
-      y(i) = w * avar;
-    }
+    for (std::size_t j = 0; j < idx.size(); ++j) a.col(static_cast<Eigen::Index>(j)) = design.col(idx[j]);
     const Eigen::MatrixXd normal = a.transpose() * a;
     const Eigen::VectorXd sol = normal.ldlt().solve(a.transpose() * y);
     const Eigen::MatrixXd inv = normal.inverse();
@@ -114,19 +116,9 @@ NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points) {
   };
   // The unconstrained fit's covariance bounds every squared coefficient, clamped or not.
   Eigen::Vector4d free_sigma = Eigen::Vector4d::Zero();
-  {
-    const auto rows = static_cast<Eigen::Index>(points.size());
-    Eigen::MatrixXd a(rows, 4);
-    for (Eigen::Index i = 0; i < rows; ++i) {
-      const auto& p = points[static_cast<std::size_t>(i)];
-      const auto b = basis(p.tau);
-      const double w = std::sqrt(p.dof / 2.0) / (p.adev * p.adev);
-      for (Eigen::Index j = 0; j < 4; ++j) a(i, j) = w * b[static_cast<std::size_t>(j)];
-    }
-    const Eigen::Matrix4d normal = a.transpose() * a;
-    Eigen::FullPivLU<Eigen::Matrix4d> lu(normal);
-    if (rows >= 4 && lu.isInvertible()) free_sigma = lu.inverse().diagonal().cwiseMax(0.0).cwiseSqrt();
-  }
+  const Eigen::Matrix4d free_normal = design.transpose() * design;
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(free_normal);
+  if (rows >= 4 && lu.isInvertible()) free_sigma = lu.inverse().diagonal().cwiseMax(0.0).cwiseSqrt();
   const auto upper = [&](int j) { return std::sqrt(std::max(c(j), 0.0) + free_sigma(j)); };
   fit.upper.quantization = upper(0);
   fit.upper.white = upper(1);

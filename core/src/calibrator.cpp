@@ -433,7 +433,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   result.history = std::move(pass.history);
   result.log_likelihood = pass.log_likelihood;
   result.innovations = std::move(pass.innovations);
-  result.duration = imu.back().t - imu.front().t;
+  result.duration = span;
 
   markConverged(result, pass.P, layout, config.converged_sigma_ratio);
   if (!settled) markUnsettled(result, step, previous_step);

@@ -53,20 +53,12 @@ void applyNoise(SensorHypothesis& model, bool gyro, const NoiseTerms& terms) {
 
 void diagnoseNoise(const std::vector<ImuSample>& imu, const std::vector<bool>& still, double min_still,
                    double family_alpha, SensorHypothesis& model, Diagnosis& diagnosis) {
-  // The longest still stretch.
-  const std::vector<Segment> segments = segmentsOf(imu, still);
-  const Segment* best = nullptr;
-  for (const auto& s : segments)
-    if (s.still && (best == nullptr || s.end - s.start > best->end - best->start)) best = &s;
-  if (best == nullptr || best->end - best->start < min_still) {
+  const StillRunSeries run = longestStillRun(imu, still);
+  if (run.samples() == 0 || run.seconds() < min_still) {
     diagnosis.notes.push_back("noise terms: no still stretch of " + std::to_string(static_cast<int>(min_still)) +
                               " s or more, so the Allan deviation was not used (record a long still stretch)");
     return;
   }
-  std::vector<std::array<double, 6>> x;
-  for (const auto& s : imu)
-    if (s.t >= best->start && s.t <= best->end) x.push_back({s.accel.x(), s.accel.y(), s.accel.z(), s.gyro.x(), s.gyro.y(), s.gyro.z()});
-  const double dt = (best->end - best->start) / static_cast<double>(x.size() - 1);
 
   // Each triad: fitted terms per axis; the filter's one density per triad follows the noisiest axis.
   const int tests = 2 * 4;
@@ -76,11 +68,9 @@ void diagnoseNoise(const std::vector<ImuSample>& imu, const std::vector<bool>& s
     const NoiseTerms before = gyro ? model.gyro_noise : model.accel_noise;
     std::vector<AllanCurve> curves;
     for (int i = 0; i < 3; ++i) {
-      std::vector<double> series(x.size());
-      for (std::size_t k = 0; k < x.size(); ++k) series[k] = x[k][static_cast<std::size_t>((gyro ? 3 : 0) + i)];
       AllanCurve c;
       c.channel = sensor + "_" + "xyz"[i];
-      c.data = allanDeviation(series, dt);
+      c.data = allanDeviation(run.channels[static_cast<std::size_t>((gyro ? 3 : 0) + i)], run.dt);
       c.fit = fitNoiseTerms(c.data);
       c.model_before = before;
       curves.push_back(c);

@@ -82,25 +82,12 @@ BiasWalkEstimate estimateBiasWalk(const std::vector<ImuSample>& imu, const std::
                                   double min_seconds) {
   BiasWalkEstimate out;
   if (imu.size() != still.size() || imu.size() < 2) return out;
-  const std::vector<Segment> segments = segmentsOf(imu, still);
-  const Segment* longest = nullptr;
-  for (const auto& s : segments)
-    if (s.still && (longest == nullptr || s.end - s.start > longest->end - longest->start)) longest = &s;
-  if (longest == nullptr || longest->end - longest->start < min_seconds) return out;
-  std::vector<double> series[6];
-  for (const auto& s : imu) {
-    if (s.t < longest->start || s.t > longest->end) continue;
-    for (int k = 0; k < 3; ++k) {
-      series[k].push_back(s.accel(k));
-      series[3 + k].push_back(s.gyro(k));
-    }
-  }
-  if (series[0].size() < 100) return out;
-  out.still_seconds = longest->end - longest->start;
-  // The Allan deviation wants a uniform grid; the still detector's runs are of samples already put on one.
-  const double dt = out.still_seconds / static_cast<double>(series[0].size() - 1);
+  // The Allan deviation wants a uniform grid; the recording's samples are already put on one.
+  const StillRunSeries run = longestStillRun(imu, still);
+  if (run.seconds() < min_seconds || run.samples() < 100) return out;
+  out.still_seconds = run.seconds();
   for (int k = 0; k < 6; ++k) {
-    const NoiseFit fit = fitNoiseTerms(allanDeviation(series[k], dt));
+    const NoiseFit fit = fitNoiseTerms(allanDeviation(run.channels[static_cast<std::size_t>(k)], run.dt));
     const bool accel = k < 3;
     const int axis = k % 3;
     (accel ? out.accel_walk : out.gyro_walk)(axis) = fit.value.random_walk;

@@ -58,4 +58,24 @@ std::vector<Segment> segmentsOf(const std::vector<ImuSample>& imu, const std::ve
   return out;
 }
 
+StillRunSeries longestStillRun(const std::vector<ImuSample>& imu, const std::vector<bool>& still) {
+  StillRunSeries run;
+  const Segment* longest = nullptr;
+  const std::vector<Segment> segments = segmentsOf(imu, still);
+  for (const auto& s : segments)
+    if (s.still && (longest == nullptr || s.end - s.start > longest->end - longest->start)) longest = &s;
+  if (longest == nullptr) return run;
+  run.start = longest->start;
+  run.end = longest->end;
+  for (const auto& s : imu) {
+    if (s.t < run.start || s.t > run.end) continue;
+    for (int k = 0; k < 3; ++k) {
+      run.channels[static_cast<std::size_t>(k)].push_back(s.accel(k));
+      run.channels[static_cast<std::size_t>(3 + k)].push_back(s.gyro(k));
+    }
+  }
+  if (run.samples() > 1) run.dt = run.seconds() / static_cast<double>(run.samples() - 1);
+  return run;
+}
+
 }  // namespace imucal

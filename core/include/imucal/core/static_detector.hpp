@@ -1,6 +1,7 @@
 #pragma once
 // Still/moving classification from the spread of accel and gyro over a centred window. Works on raw
 // samples: a constant bias does not change a spread.
+#include <array>
 #include <vector>
 
 #include "imucal/core/types.hpp"
@@ -42,5 +43,16 @@ struct Segment {
 };
 // Runs of equal verdicts as time intervals.
 std::vector<Segment> segmentsOf(const std::vector<ImuSample>& imu, const std::vector<bool>& still);
+
+// The samples of the longest still run, one series per channel (accel x, y, z, gyro x, y, z), with their
+// mean sample period: what an Allan deviation of the still data is computed on. Empty when nothing is still.
+struct StillRunSeries {
+  double start = 0.0, end = 0.0;
+  double dt = 0.0;  // s
+  std::array<std::vector<double>, 6> channels;
+  double seconds() const { return end - start; }
+  std::size_t samples() const { return channels[0].size(); }
+};
+StillRunSeries longestStillRun(const std::vector<ImuSample>& imu, const std::vector<bool>& still);
 
 }  // namespace imucal
