@@ -3,7 +3,7 @@
 // and moving starts, the paper's motion and a three-axis motion), N seeds each, through the full sensor
 // model with the shipped defaults. Prints, per scenario and parameter: RMS of error / sigma, the worst
 // |error / sigma|, the fraction called converged, and every converged estimate more than 4 sigma off.
-// Usage: imucal_scenario_study [seeds=50] [first_seed=1]
+// Usage: imucal_scenario_study [seeds=50] [first_seed=1] [scenario name, or all]
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -35,9 +35,17 @@ sim::Segment turn(const Vec3& axis, double angle_deg, double s) {
 struct Scenario {
   std::string name;
   std::function<void(sim::SimConfig&, std::mt19937_64&)> apply;
+  // What the user tells the filter beyond the defaults (most scenarios: nothing).
+  std::function<void(FilterConfig&, const sim::SimConfig&)> tell = [](FilterConfig&, const sim::SimConfig&) {};
 };
 
 double uniform(std::mt19937_64& rng, double a) { return std::uniform_real_distribution<double>(-a, a)(rng); }
+
+void threeAxis(sim::SimConfig& c, std::mt19937_64&) {
+  c.motion.segments = {still(8), turn(Vec3::UnitZ(), 360, 8), still(4), turn(Vec3::UnitX(), 360, 8), still(4),
+                       turn(Vec3::UnitY(), 360, 8), still(4), turn(Vec3::UnitX(), -360, 8), still(4),
+                       turn(Vec3::UnitY(), -360, 8), still(6)};
+}
 
 std::vector<Scenario> scenarios() {
   return {
@@ -79,12 +87,15 @@ std::vector<Scenario> scenarios() {
        [](sim::SimConfig& c, std::mt19937_64&) {
          c.motion.segments.insert(c.motion.segments.begin(), turn(Vec3::UnitZ(), 90.0, 2.0));
        }},
-      {"three_axis",
-       [](sim::SimConfig& c, std::mt19937_64&) {
-         c.motion.segments = {still(8), turn(Vec3::UnitZ(), 360, 8), still(4), turn(Vec3::UnitX(), 360, 8), still(4),
-                              turn(Vec3::UnitY(), 360, 8), still(4), turn(Vec3::UnitX(), -360, 8), still(4),
-                              turn(Vec3::UnitY(), -360, 8), still(6)};
-       }},
+      {"three_axis", threeAxis},
+      // With the latitude given, the accelerometer scales are no longer limited by gravity's magnitude.
+      {"three_axis_latitude_given",
+       [](sim::SimConfig& c, std::mt19937_64& rng) {
+         threeAxis(c, rng);
+         c.earth.latitude = 32.0 * deg;
+         c.earth.latitude_gravity = true;
+       },
+       [](FilterConfig& f, const sim::SimConfig& c) { f.earth = c.earth; }},
   };
 }
 
@@ -109,8 +120,19 @@ struct Cell {
 int main(int argc, char** argv) {
   const int seeds = argc > 1 ? std::atoi(argv[1]) : 50;
   const int first = argc > 2 ? std::atoi(argv[2]) : 1;
-  const auto list = scenarios();
-  const FilterConfig filter = fullModel();
+  auto list = scenarios();
+  if (argc > 3) {
+    const std::string only = argv[3];
+    std::vector<Scenario> picked;
+    for (auto& s : list)
+      if (s.name == only) picked.push_back(s);
+    if (picked.empty()) {
+      std::fprintf(stderr, "imucal_scenario_study: no scenario named '%s'\n", only.c_str());
+      return 2;
+    }
+    list = picked;
+  }
+  const FilterConfig defaults = fullModel();
   std::vector<std::map<std::string, Cell>> cells(list.size());
   std::vector<std::vector<std::string>> names(list.size());
   std::vector<std::string> errors;
@@ -124,6 +146,8 @@ int main(int argc, char** argv) {
       sim::SimConfig c = sim::paperScenario(5.0 * deg, true, seed);
       std::mt19937_64 rng(seed * 7919u + s);
       list[s].apply(c, rng);
+      FilterConfig filter = defaults;
+      list[s].tell(filter, c);
       const sim::SimOutput out = sim::simulate(c, seed);
       CalibrationResult r;
       try {
@@ -154,6 +178,9 @@ int main(int argc, char** argv) {
         cell.sum_z2 += z * z;
         cell.worst = std::max(cell.worst, std::abs(z));
         ++cell.runs;
+        if (std::getenv("IMUCAL_STUDY_REASONS") && !r.converged[j])
+          std::fprintf(stderr, "%s seed %llu %s: %s\n", list[s].name.c_str(), static_cast<unsigned long long>(seed),
+                       r.names[j].c_str(), r.not_converged_reason[j].c_str());
         if (r.converged[j]) {
           ++cell.converged;
           if (std::abs(z) > 4.0) {

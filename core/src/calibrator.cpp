@@ -415,8 +415,11 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
     const VecX sigma = paramSigmas(pass.P, layout);
     previous_step = step;
     step = (pass.params - params).cwiseQuotient(sigma);
-    params = pass.params;
     result.passes_run = i + 1;
+    // A step that reverses the previous one overshot the point where a pass returns what it started from;
+    // if it is not much shorter, taking it whole can swing about that point for ever, half of it closes in.
+    const bool overshot = i > 0 && step.dot(previous_step) < 0.0 && step.norm() > 0.5 * previous_step.norm();
+    params = overshot ? VecX(params + 0.5 * (pass.params - params)) : pass.params;
     // Later passes only re-linearize; once the estimates stop moving they add nothing.
     if (i > 0 && step.cwiseAbs().maxCoeff() < kSettledStep) {
       settled = true;
