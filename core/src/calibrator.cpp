@@ -391,7 +391,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   const HeadingErrors heading_errors{config.measurements.heading_bias, config.measurements.heading_latency};
   for (auto& h : heading) h.heading = heading_errors.correct(h.heading);
   if (config.passes < 1) throw std::invalid_argument("calibrate: passes must be at least 1");
-  const StateLayout layout = StateLayout::make(config.model);
+  const StateLayout layout = StateLayout::make(config.model, config.measurements.centre_motion.enabled);
 
   result.layout = layout;
   result.names = layout.paramNames();

@@ -12,7 +12,10 @@ ErrorDynamics::ErrorDynamics(const StateLayout& layout, const FilterConfig& conf
       q_vel_(config.noise.accel_white * config.noise.accel_white),
       q_att_(config.noise.gyro_white * config.noise.gyro_white),
       q_ba_(config.noise.accel_bias_walk * config.noise.accel_bias_walk),
-      q_bg_(config.noise.gyro_bias_walk * config.noise.gyro_bias_walk) {}
+      q_bg_(config.noise.gyro_bias_walk * config.noise.gyro_bias_walk),
+      centre_omega_(config.measurements.centre_motion.omega()),
+      centre_q_(config.measurements.centre_motion.accelerationDensity() *
+                config.measurements.centre_motion.accelerationDensity()) {}
 
 void ErrorDynamics::applyF(const Linearization& lin, const StateMat& X, StateMat& out) const {
   using L = StateLayout;
@@ -55,6 +58,13 @@ void ErrorDynamics::applyF(const Linearization& lin, const StateMat& X, StateMat
         break;
     }
   }
+  if (layout_.hasCentre()) {
+    // d' = u, u' = -w^2 d - 2 z w u (+ noise): linear, so its error obeys the same.
+    const int d = layout_.centre();
+    out.middleRows<3>(d) = X.middleRows<3>(d + 3);
+    out.middleRows<3>(d + 3) = -(centre_omega_ * centre_omega_) * X.middleRows<3>(d) -
+                               (2.0 * CentreMotionConfig::kDamping * centre_omega_) * X.middleRows<3>(d + 3);
+  }
   if (earth_.earth_rate) {
     const Mat3 w_skew = skew(earth_.earthRateNed());
     out.middleRows<3>(L::kAtt).noalias() -= w_skew * X.middleRows<3>(L::kAtt);
@@ -90,6 +100,16 @@ void ErrorDynamics::propagate(StateMat& P, const Linearization& lin, double dt) 
   }
   P.diagonal().segment<3>(L::kAccelBias).array() += q_ba_ * dt;
   P.diagonal().segment<3>(L::kGyroBias).array() += q_bg_ * dt;
+  if (layout_.hasCentre()) {
+    // The driving noise enters the centre's velocity; its displacement integrates it, as position does.
+    const int d = layout_.centre();
+    for (int i = 0; i < 3; ++i) {
+      P(d + 3 + i, d + 3 + i) += centre_q_ * dt;
+      P(d + i, d + i) += centre_q_ * dt * dt * dt / 3.0;
+      P(d + i, d + 3 + i) += centre_q_ * dt * dt / 2.0;
+      P(d + 3 + i, d + i) += centre_q_ * dt * dt / 2.0;
+    }
+  }
 }
 
 MatX blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value) {

@@ -9,7 +9,11 @@
 namespace imucal {
 
 Eskf::Eskf(const FilterConfig& config)
-    : config_(config), layout_(StateLayout::make(config.model)), earth_(config.earth), dynamics_(layout_, config) {
+    : config_(config),
+      layout_(StateLayout::make(config.model, config.measurements.centre_motion.enabled)),
+      earth_(config.earth),
+      dynamics_(layout_, config),
+      centre_omega_(config.measurements.centre_motion.omega()) {
   params_ = VecX::Zero(layout_.paramCount());
   P_ = StateMat::Identity(layout_.size, layout_.size);
   dx_ = StateVec::Zero(layout_.size);
@@ -37,6 +41,7 @@ void Eskf::initialize(const ImuSample& first_raw, const NavState& nav, const Vec
   params_ = params;
   P_ = P0;
   dx_.setZero(layout_.size);
+  centre_.setZero();
   if (prior_mean.size() != 0) dx_.segment(StateLayout::kParamStart, layout_.paramCount()) = prior_mean - params;
   log_likelihood_ = 0.0;
   refreshModel();
@@ -88,6 +93,12 @@ void Eskf::predict(const ImuSample& raw) {
     dx_ += dt * fdx.col(0);
   }
   dynamics_.propagate(P_, lin, dt);
+  if (layout_.hasCentre() && feedback_) {
+    // The nominal centre follows the same damped dynamics (Phi = I + F dt, as the covariance).
+    const Vec3 d = centre_.head<3>(), u = centre_.tail<3>();
+    centre_.head<3>() += dt * u;
+    centre_.tail<3>() -= dt * (centre_omega_ * centre_omega_ * d + 2.0 * CentreMotionConfig::kDamping * centre_omega_ * u);
+  }
   last_raw_ = raw;
 }
 
@@ -119,8 +130,14 @@ double Eskf::updateCentre(int channel0, const Vec3& predicted, const Mat3& att_j
     h_.segment<3>(L::kAtt) = att_jacobian.row(i).transpose();
     if (gyro_bias_jacobian != nullptr) h_.segment<3>(L::kGyroBias) = gyro_bias_jacobian->row(i).transpose();
     if (lever >= 0) h_.segment<3>(lever) = lever_jacobian.row(i).transpose();
+    double centre = 0.0;
+    if (layout_.hasCentre()) {
+      const int c = layout_.centre() + (velocity ? 3 : 0) + i;
+      h_(c) = -1.0;
+      centre = centre_((velocity ? 3 : 0) + i);
+    }
     channel_ = channel0 + i;
-    scalarRow(h_, -predicted(i), sigma * sigma, nis);
+    scalarRow(h_, centre - predicted(i), sigma * sigma, nis);
   }
   return nis;
 }
@@ -139,6 +156,11 @@ double Eskf::updateZeroVelocity(double sigma) {
   }
   double nis = 0.0;
   for (int i = 0; i < 3; ++i) {
+    if (layout_.hasCentre()) {
+      nis += updateDeviceMinusCentre(Innovation::VelocityX + i, StateLayout::kVel + i, layout_.centre() + 3 + i,
+                                     nav_.v(i) - centre_(3 + i), sigma);
+      continue;
+    }
     channel_ = Innovation::VelocityX + i;
     scalarSelector(StateLayout::kVel + i, -nav_.v(i), sigma * sigma, nis);
   }
@@ -155,9 +177,24 @@ double Eskf::updateConstantPosition(const Vec3& p_ref, double sigma) {
   }
   double nis = 0.0;
   for (int i = 0; i < 3; ++i) {
+    if (layout_.hasCentre()) {
+      nis += updateDeviceMinusCentre(Innovation::PositionX + i, StateLayout::kPos + i, layout_.centre() + i,
+                                     nav_.p(i) - centre_(i) - p_ref(i), sigma);
+      continue;
+    }
     channel_ = Innovation::PositionX + i;
     scalarSelector(StateLayout::kPos + i, p_ref(i) - nav_.p(i), sigma * sigma, nis);
   }
+  return nis;
+}
+
+double Eskf::updateDeviceMinusCentre(int channel, int device_index, int centre_index, double predicted, double sigma) {
+  h_.setZero(layout_.size);
+  h_(device_index) = 1.0;
+  h_(centre_index) = -1.0;
+  channel_ = channel;
+  double nis = 0.0;
+  scalarRow(h_, -predicted, sigma * sigma, nis);
   return nis;
 }
 
@@ -197,6 +234,7 @@ void Eskf::correct() {
   nav_.v += dx_.segment<3>(L::kVel);
   nav_.q_nb = (rotationVectorToQuat(dphi) * nav_.q_nb).normalized();
   params_ += dx_.segment(L::kParamStart, layout_.paramCount());
+  if (layout_.hasCentre()) centre_ += dx_.segment<6>(layout_.centre());
   dx_.setZero();
   refreshModel();
 

@@ -1,6 +1,19 @@
 #include "imucal/core/filter_config.hpp"
 
+#include <cmath>
+
 namespace imucal {
+
+double CentreMotionConfig::omega() const { return 2.0 * 3.14159265358979323846 * frequency; }
+
+// x'' + 2 z w x' + w^2 x = n with white n of density q has stationary variances q / (4 z w^3) (x) and
+// q / (4 z w) (x').
+double CentreMotionConfig::velocitySigma() const { return omega() * displacement_sigma; }
+
+double CentreMotionConfig::accelerationDensity() const {
+  const double w = omega();
+  return std::sqrt(4.0 * kDamping * w * w * w) * displacement_sigma;
+}
 
 FilterConfig effectiveConfig(const FilterConfig& config, std::vector<std::string>* warnings) {
   FilterConfig f = config;

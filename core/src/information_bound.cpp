@@ -23,7 +23,7 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
                              const FilterConfig& given) {
   if (traj.size() < 2) throw std::invalid_argument("informationBound: need at least two trajectory points");
   const FilterConfig config = effectiveConfig(given);
-  const StateLayout layout = StateLayout::make(config.model);
+  const StateLayout layout = StateLayout::make(config.model, config.measurements.centre_motion.enabled);
   const ErrorDynamics dynamics(layout, config);
   const auto& m = config.measurements;
   const bool use_heading = m.heading && !heading_times.empty();
@@ -76,22 +76,24 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
     // filter: velocity -C [w x] dr, position -C dr.
     const int lever = layout.offset(ParamBlock::LeverArm);
     const Mat3 c = traj[k].q_nb.toRotationMatrix();
-    const auto update = [&](int index, const Mat3& lever_jacobian, int row, double sigma) {
-      if (lever < 0) {
+    // With the centre's motion modelled, the rows see the device minus the centre, as in the filter.
+    const auto update = [&](int index, int centre_index, const Mat3& lever_jacobian, int row, double sigma) {
+      if (lever < 0 && !layout.hasCentre()) {
         josephSelectorUpdate(P, index, sigma * sigma, K, s, mask);
         return;
       }
       hrow.setZero(layout.size);
       hrow(index) = 1.0;
-      hrow.segment<3>(lever) = lever_jacobian.row(row).transpose();
+      if (lever >= 0) hrow.segment<3>(lever) = lever_jacobian.row(row).transpose();
+      if (layout.hasCentre()) hrow(layout.centre() + centre_index) = -1.0;
       josephScalarUpdate(P, hrow, sigma * sigma, K, s, mask);
     };
     if (m.zero_velocity) {
       const Mat3 jv = -c * skew(traj[k].w_b);
-      for (int i = 0; i < 3; ++i) update(StateLayout::kVel + i, jv, i, m.zero_velocity_sigma);
+      for (int i = 0; i < 3; ++i) update(StateLayout::kVel + i, 3 + i, jv, i, m.zero_velocity_sigma);
     }
     if (m.constant_position) {
-      for (int i = 0; i < 3; ++i) update(StateLayout::kPos + i, -c, i, m.constant_position_sigma);
+      for (int i = 0; i < 3; ++i) update(StateLayout::kPos + i, i, -c, i, m.constant_position_sigma);
     }
     record(traj[k].t);
   }

@@ -24,6 +24,22 @@ StateMat priorCovariance(const FilterConfig& config, const StateLayout& layout, 
     const double sigma = config.model[info.block].sigma;
     P.diagonal().segment(layout.offset(info.block), info.size()).setConstant(sigma * sigma);
   }
+  if (layout.hasCentre()) {
+    // The pseudo-observations' origin is the centre's mean position; the device starts where the hand's
+    // displacement has it (stationary), so its position and velocity share the centre's uncertainty.
+    const CentreMotionConfig& cm = config.measurements.centre_motion;
+    const double var_d = cm.displacement_sigma * cm.displacement_sigma;
+    const double var_u = cm.velocitySigma() * cm.velocitySigma();
+    const int d = layout.centre();
+    for (int i = 0; i < 3; ++i) {
+      P(d + i, d + i) = var_d;
+      P(d + 3 + i, d + 3 + i) = var_u;
+      P(L::kPos + i, L::kPos + i) += var_d;
+      P(L::kVel + i, L::kVel + i) += var_u;
+      P(L::kPos + i, d + i) = P(d + i, L::kPos + i) = var_d;
+      P(L::kVel + i, d + 3 + i) = P(d + 3 + i, L::kVel + i) = var_u;
+    }
+  }
   return P;
 }
 

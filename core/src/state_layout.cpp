@@ -25,7 +25,7 @@ void ModelOptions::setMean(const ParamRef& p, double value) {
   m.at(static_cast<std::size_t>(p.component)) = value;
 }
 
-StateLayout StateLayout::make(const ModelOptions& options) {
+StateLayout StateLayout::make(const ModelOptions& options, bool centre_motion) {
   StateLayout layout;
   layout.offsets_.fill(-1);
   int next = kParamStart;
@@ -42,6 +42,10 @@ StateLayout StateLayout::make(const ModelOptions& options) {
   }
   if (layout.offsets_[0] != kAccelBias || layout.offsets_[1] != kGyroBias) {
     throw std::logic_error("StateLayout: the registry must list the accelerometer and gyro biases first");
+  }
+  if (centre_motion) {
+    layout.centre_ = next;
+    next += kCentreStates;
   }
   layout.size = next;
   return layout;

@@ -180,6 +180,10 @@ void readMeasurements(YamlSection s, MeasurementConfig& m) {
   m.zero_velocity_sigma = s.number("zero_velocity_sigma_m_per_s", m.zero_velocity_sigma, Range::positive());
   m.constant_position = s.boolean("constant_position", m.constant_position);
   m.constant_position_sigma = s.number("constant_position_sigma_m", m.constant_position_sigma, Range::positive());
+  CentreMotionConfig& c = m.centre_motion;
+  c.enabled = s.boolean("centre_motion", c.enabled);
+  c.displacement_sigma = s.number("centre_displacement_mm", c.displacement_sigma * 1e3, Range::positive()) * 1e-3;
+  c.frequency = s.number("centre_frequency_hz", c.frequency, Range::positive());
   m.heading = s.boolean("heading", m.heading);
   s.finish();
 }

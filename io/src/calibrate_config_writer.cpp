@@ -105,6 +105,9 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   emitNumber(out, "zero_velocity_sigma_m_per_s", f.measurements.zero_velocity_sigma);
   emitBool(out, "constant_position", f.measurements.constant_position);
   emitNumber(out, "constant_position_sigma_m", f.measurements.constant_position_sigma);
+  emitBool(out, "centre_motion", f.measurements.centre_motion.enabled);
+  emitNumber(out, "centre_displacement_mm", f.measurements.centre_motion.displacement_sigma * 1e3);
+  emitNumber(out, "centre_frequency_hz", f.measurements.centre_motion.frequency);
   emitBool(out, "heading", f.measurements.heading);
   out << YAML::EndMap;
 

@@ -61,6 +61,7 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
                 {"heading_rejected", s.heading_rejected},
                 {"heading_nis_mean", numberOrNull(s.heading_nis_mean)},
                 {"velocity_nis_mean", numberOrNull(s.velocity_nis_mean)}}},
+              {"log_likelihood", numberOrNull(result.log_likelihood)},
               {"passes", result.passes_run},
               {"duration_s", numberOrNull(result.duration)},
               {"warnings", result.warnings},

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "imucal/core/calibrator.hpp"
 #include "imucal/core/information_bound.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/sim/simulator.hpp"
@@ -123,6 +124,28 @@ TEST(InformationBound, SigmaHistoryNeverIncreasesWithoutProcessNoise) {
     }
   }
   EXPECT_EQ(increases, 0);
+}
+
+TEST(InformationBound, ModelledCentreMotionLosesInformationAndMatchesTheFilter) {
+  // The hand's motion as states frees the device's position and velocity (the rows' white sigmas
+  // unchanged): no bias can be known better than with them pinned. The bound's rows are written apart from the filter's; the filter's own sigmas
+  // (before any consistency inflation) on a simulation of the same motion must be what the bound says.
+  const sim::SimOutput out = sim::simulate(sim::paperScenario(5.0 * units::deg, true, 1), 1);
+  const PaperData& d = paperData();
+  FilterConfig pinned = withSimulatedGravity();
+  FilterConfig modelled = pinned;
+  modelled.measurements.centre_motion.enabled = true;
+  modelled.measurements.centre_motion.displacement_sigma = 0.03;
+  modelled.measurements.centre_motion.frequency = 0.35;
+  const BoundResult without = informationBound(d.trajectory, d.heading_times, pinned);
+  const BoundResult with = informationBound(d.trajectory, d.heading_times, modelled);
+  ASSERT_EQ(with.sigma.size(), 6);
+  const CalibrationResult filter = calibrate(out.imu, out.heading, modelled);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_GE(with.sigma(i), without.sigma(i) * (1.0 - 1e-9)) << with.names[static_cast<std::size_t>(i)];
+    const double own = filter.sigma(i) / filter.parameter_inflation(i);
+    EXPECT_NEAR(own / with.sigma(i), 1.0, 0.15) << with.names[static_cast<std::size_t>(i)];
+  }
 }
 
 TEST(InformationBound, RejectsTooShortTrajectory) {

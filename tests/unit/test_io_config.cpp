@@ -270,6 +270,9 @@ measurements:
   zero_velocity_sigma_m_per_s: 0.02
   constant_position: false
   constant_position_sigma_m: 0.05
+  centre_motion: true
+  centre_displacement_mm: 25
+  centre_frequency_hz: 0.4
   heading: false
 model: {accel_scale: true, gyro_scale: true}
 earth: {latitude_deg: -33.9, height_m: 10, latitude_gravity: true, earth_rate: false}
@@ -332,6 +335,9 @@ TEST(IoConfig, CalibrateConfigConvertsEveryKey) {
   EXPECT_EQ(f.measurements.zero_velocity_sigma, 0.02);
   EXPECT_FALSE(f.measurements.constant_position);
   EXPECT_EQ(f.measurements.constant_position_sigma, 0.05);
+  EXPECT_TRUE(f.measurements.centre_motion.enabled);
+  EXPECT_DOUBLE_EQ(f.measurements.centre_motion.displacement_sigma, 0.025);
+  EXPECT_EQ(f.measurements.centre_motion.frequency, 0.4);
   EXPECT_FALSE(f.measurements.heading);
   EXPECT_TRUE(f.model.estimates(ParamBlock::AccelScale));
   EXPECT_TRUE(f.model.estimates(ParamBlock::GyroScale));
@@ -389,6 +395,10 @@ TEST(IoConfig, CalibrateConfigErrorsNameLineAndKey) {
   expectCalibrateError("prior:\n  tilt_deg: -5\n", ":2: prior.tilt_deg: must be > 0 (got -5)");
   expectCalibrateError("measurements:\n  zero_velocity: 1\n",
                        ":2: measurements.zero_velocity: expected true or false, got '1'");
+  expectCalibrateError("measurements:\n  centre_frequency_hz: 0\n",
+                       ":2: measurements.centre_frequency_hz: must be > 0 (got 0)");
+  expectCalibrateError("measurements:\n  centre_displacement_mm: -1\n",
+                       ":2: measurements.centre_displacement_mm: must be > 0 (got -1)");
   expectCalibrateError("filter:\n  passes: 0\n", ":2: filter.passes: must be between 1 and 100 (got 0)");
   expectCalibrateError("filter:\n  alignment_time_s: 0\n", ":2: filter.alignment_time_s: must be > 0");
   expectCalibrateError("filter:\n  converged_sigma_ratio: 1.5\n", ":2: filter.converged_sigma_ratio: must be in (0, 1]");
@@ -420,6 +430,9 @@ TEST(IoConfig, CalibrateConfigRoundTripsThroughItsYaml) {
   near(b.filter.model[ParamBlock::AccelBias].sigma, a.filter.model[ParamBlock::AccelBias].sigma);
   near(b.filter.measurements.heading_sigma, a.filter.measurements.heading_sigma);
   near(b.filter.measurements.heading_latency, a.filter.measurements.heading_latency);
+  EXPECT_EQ(b.filter.measurements.centre_motion.enabled, a.filter.measurements.centre_motion.enabled);
+  near(b.filter.measurements.centre_motion.displacement_sigma, a.filter.measurements.centre_motion.displacement_sigma);
+  near(b.filter.measurements.centre_motion.frequency, a.filter.measurements.centre_motion.frequency);
   near(b.filter.earth.latitude, a.filter.earth.latitude);
   near(b.mag_heading.declination, a.mag_heading.declination);
   near(b.mag_heading.inclination, a.mag_heading.inclination);

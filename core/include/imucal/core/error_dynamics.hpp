@@ -12,7 +12,7 @@
 
 namespace imucal {
 
-constexpr int kMaxStates = 48;
+constexpr int kMaxStates = 52;  // the full model, lever arm and gravity (43) and the centre's motion (6)
 using StateVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxStates, 1>;
 using StateMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxStates, kMaxStates>;
 
@@ -53,6 +53,9 @@ class ErrorDynamics {
   double q_att_;   // gyro white noise PSD
   double q_ba_;    // accel bias random walk PSD
   double q_bg_;
+  // The centre's motion: natural frequency, damping and driving noise PSD (see CentreMotionConfig).
+  double centre_omega_;
+  double centre_q_;
 };
 
 // Heading (yaw of C_bn) and its Jacobian row with respect to the error state (correct when tilted).

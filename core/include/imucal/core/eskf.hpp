@@ -83,6 +83,9 @@ class Eskf {
  private:
   void scalarSelector(int index, double innovation, double variance, double& nis);
   void scalarRow(const StateVec& h, double innovation, double variance, double& nis);
+  // The row of a pseudo-observation of the device's position (velocity) minus the centre's displacement
+  // (velocity): the nominal centre leaves the innovation, the centre's error state enters the row.
+  double updateDeviceMinusCentre(int channel, int device_index, int centre_index, double predicted, double sigma);
   // Adds the gain times innovation to the error state and tells every observer of updates.
   void applyUpdate(int channel, double y, double s);
   // Re-derives the sensor model, its inverse gains and the gravity used from params_.
@@ -113,6 +116,9 @@ class Eskf {
   std::vector<Innovation>* sink_ = nullptr;
   InnovationWhiteness* whiteness_ = nullptr;
   IncrementConsistencyCheck* increments_ = nullptr;
+  // Nominal displacement and velocity of the centre when its motion is modelled (zero otherwise).
+  Eigen::Matrix<double, 6, 1> centre_ = Eigen::Matrix<double, 6, 1>::Zero();
+  double centre_omega_ = 0.0;
   int channel_ = 0;  // channel of the selector update in progress
 };
 

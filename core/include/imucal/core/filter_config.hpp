@@ -32,6 +32,22 @@ struct PriorConfig {
   double velocity = 1e-2;                              // m/s
 };
 
+// The hand moves the centre it turns the device about. Modelled, each NED axis of the centre's displacement
+// is a second-order Gauss-Markov process (a damped oscillator driven by white noise, damping 1/sqrt(2))
+// whose displacement and velocity are states the pseudo-observations see; the pseudo-observations' own
+// sigmas are then the part that is white. Without it the hand's motion counts as white velocity noise,
+// which it is not: it lasts for seconds and stays bounded.
+struct CentreMotionConfig {
+  bool enabled = false;
+  double displacement_sigma = 0.02;  // m, stationary RMS per axis
+  double frequency = 0.3;            // Hz, natural frequency
+  // Stationary RMS of the centre's velocity, and the white acceleration density that keeps it there.
+  double velocitySigma() const;
+  double accelerationDensity() const;  // m/s^2/sqrt(Hz)
+  double omega() const;                // rad/s
+  static constexpr double kDamping = 0.70710678118654752440;
+};
+
 struct MeasurementConfig {
   bool zero_velocity = true;
   double zero_velocity_sigma = 0.01;   // m/s
@@ -43,6 +59,7 @@ struct MeasurementConfig {
   double heading_bias = 0.0;           // rad, subtracted from heading values (see heading_model.hpp)
   // Heading innovations beyond this many sigma are rejected (a magnetometer near iron).
   double heading_gate_sigma = 0.0;     // 0 = no gate
+  CentreMotionConfig centre_motion;
 };
 
 struct FilterConfig {

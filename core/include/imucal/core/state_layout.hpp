@@ -41,16 +41,23 @@ struct StateLayout {
   // Offset of the first calibration parameter (accel bias); parameters run from here to size.
   static constexpr int kParamStart = kAccelBias;
 
+  // The hand's displacement of the turn's centre and its velocity (NED), after the parameters when the
+  // centre's motion is modelled (see CentreMotionConfig).
+  static constexpr int kCentreStates = 6;
+
   int size = kCoreSize;
 
-  static StateLayout make(const ModelOptions& options);
+  static StateLayout make(const ModelOptions& options, bool centre_motion = false);
+  // Offset of the centre's displacement (its velocity follows), -1 when not modelled.
+  int centre() const { return centre_; }
+  bool hasCentre() const { return centre_ >= 0; }
   // State offset of a block, -1 when it is not in the state.
   int offset(ParamBlock b) const { return offsets_[static_cast<std::size_t>(b)]; }
   bool has(ParamBlock b) const { return offset(b) >= 0; }
   BlockMode mode(ParamBlock b) const { return modes_[static_cast<std::size_t>(b)]; }
   // Offset within the parameter vector (state offset - kParamStart), -1 when absent.
   int paramOffset(ParamBlock b) const { return has(b) ? offset(b) - kParamStart : -1; }
-  int paramCount() const { return size - kParamStart; }
+  int paramCount() const { return (centre_ >= 0 ? centre_ : size) - kParamStart; }
   // The parameters in state order, and their stable names (accel_bias_x ... as the registry spells them).
   const std::vector<ParamRef>& params() const { return params_; }
   std::vector<std::string> paramNames() const;
@@ -61,6 +68,7 @@ struct StateLayout {
   std::array<int, kParamBlockCount> offsets_{};
   std::array<BlockMode, kParamBlockCount> modes_{};
   std::vector<ParamRef> params_;
+  int centre_ = -1;
 };
 
 }  // namespace imucal
