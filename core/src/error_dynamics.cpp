@@ -15,49 +15,64 @@ ErrorDynamics::ErrorDynamics(const StateLayout& layout, const FilterConfig& conf
       q_bg_(config.noise.gyro_bias_walk * config.noise.gyro_bias_walk),
       centre_omega_(config.measurements.centre_motion.omega()),
       centre_q_(config.measurements.centre_motion.accelerationDensity() *
-                config.measurements.centre_motion.accelerationDensity()) {}
+                config.measurements.centre_motion.accelerationDensity()) {
+  for (int i = StateLayout::kPos; i < StateLayout::kAccelBias; ++i) dynamic_rows_.push_back(i);
+  if (layout_.hasCentre())
+    for (int i = 0; i < StateLayout::kCentreStates; ++i) dynamic_rows_.push_back(layout_.centre() + i);
+}
 
-void ErrorDynamics::applyF(const Linearization& lin, const StateMat& X, StateMat& out) const {
+ErrorDynamics::ParamRows ErrorDynamics::paramRows(const Linearization& lin) const {
   using L = StateLayout;
-  const int cols = static_cast<int>(X.cols());
-  out.setZero(layout_.size, cols);
   const Mat3& c = lin.c_bn;
-  const Mat3 f_n_skew = skew(c * lin.f_b);
-
-  out.middleRows<3>(L::kPos) = X.middleRows<3>(L::kVel);
-  out.middleRows<3>(L::kVel).noalias() = -f_n_skew * X.middleRows<3>(L::kAtt);
-  const Mat3 c_a = c * lin.accel_gain_inv;
-  const Mat3 c_g = c * lin.gyro_gain_inv;
-  out.middleRows<3>(L::kVel).noalias() -= c_a * X.middleRows<3>(L::kAccelBias);
-  out.middleRows<3>(L::kAtt).noalias() = -c_g * X.middleRows<3>(L::kGyroBias);
+  ParamRows j = ParamRows::Zero(6, layout_.paramCount());
+  const auto vel = [&j](int off, int cols) { return j.block(0, off - L::kParamStart, 3, cols); };
+  const auto att = [&j](int off, int cols) { return j.block(3, off - L::kParamStart, 3, cols); };
   for (const auto& info : paramBlocks()) {
     const int off = layout_.offset(info.block);
     if (off < 0) continue;
     switch (info.block) {
+      case ParamBlock::AccelBias:
+        vel(off, 3) = -c * lin.accel_gain_inv;
+        break;
+      case ParamBlock::GyroBias:
+        att(off, 3) = -c * lin.gyro_gain_inv;
+        break;
       case ParamBlock::AccelScale:
       case ParamBlock::AccelMisalignment:
-        out.middleRows<3>(L::kVel).noalias() +=
-            (c * blockJacobian(info.block, lin.accel_gain_inv, lin.f_b)) * X.middleRows(off, info.size());
+        vel(off, info.size()) = c * blockJacobian(info.block, lin.accel_gain_inv, lin.f_b);
         break;
       case ParamBlock::GyroScale:
       case ParamBlock::GyroMisalignment:
-        out.middleRows<3>(L::kAtt).noalias() +=
-            (c * blockJacobian(info.block, lin.gyro_gain_inv, lin.w_b)) * X.middleRows(off, info.size());
+        att(off, info.size()) = c * blockJacobian(info.block, lin.gyro_gain_inv, lin.w_b);
         break;
       case ParamBlock::GyroGSensitivity:
-        out.middleRows<3>(L::kAtt).noalias() +=
-            (c * blockJacobian(info.block, lin.gyro_gain_inv, lin.f_b)) * X.middleRows(off, info.size());
+        att(off, info.size()) = c * blockJacobian(info.block, lin.gyro_gain_inv, lin.f_b);
         break;
       case ParamBlock::Gravity:
         // Gravity is (0, 0, g) in NED: its magnitude error accelerates straight down.
-        out.row(L::kVel + 2) += X.row(off);
+        j(2, off - L::kParamStart) = 1.0;
         break;
-      case ParamBlock::AccelBias:
-      case ParamBlock::GyroBias:
       case ParamBlock::LeverArm:  // constant, enters only the pseudo-observations
         break;
     }
   }
+  return j;
+}
+
+void ErrorDynamics::applyF(const Linearization& lin, const StateMat& X, StateMat& out) const {
+  applyF(lin, paramRows(lin), X, out);
+}
+
+void ErrorDynamics::applyF(const Linearization& lin, const ParamRows& param_rows, const StateMat& X,
+                           StateMat& out) const {
+  using L = StateLayout;
+  const int cols = static_cast<int>(X.cols());
+  out.setZero(layout_.size, cols);
+  const Mat3 f_n_skew = skew(lin.c_bn * lin.f_b);
+  out.middleRows<3>(L::kPos) = X.middleRows<3>(L::kVel);
+  // Velocity and attitude rows: the parameters' columns as one product.
+  out.middleRows<6>(L::kVel).noalias() = param_rows * X.middleRows(L::kParamStart, layout_.paramCount());
+  out.middleRows<3>(L::kVel).noalias() -= f_n_skew * X.middleRows<3>(L::kAtt);
   if (layout_.hasCentre()) {
     // d' = u, u' = -w^2 d - 2 z w u (+ noise): linear, so its error obeys the same.
     const int d = layout_.centre();
@@ -81,14 +96,17 @@ StateMat ErrorDynamics::denseF(const Linearization& lin) const {
 
 void ErrorDynamics::propagate(StateMat& P, const Linearization& lin, double dt) const {
   using L = StateLayout;
-  // Phi P Phi^T = P + dt (FP + (FP)^T) + dt^2 F P F^T, with FP formed block-sparsely.
+  // Phi P Phi^T = P + dt (FP + (FP)^T) + dt^2 F P F^T. Only the navigation (and centre) rows of F are
+  // nonzero, so F P F^T is nonzero only in those rows and columns: F applied to them of (FP)^T.
+  const ParamRows param_rows = paramRows(lin);
   StateMat fp;
-  applyF(lin, P, fp);
+  applyF(lin, param_rows, P, fp);
+  const StateMat pft = fp(dynamic_rows_, Eigen::all).transpose();
   StateMat fpft;
-  const StateMat pft = fp.transpose();
-  applyF(lin, pft, fpft);
+  applyF(lin, param_rows, pft, fpft);
   P += dt * (fp + fp.transpose());
-  P += (dt * dt) * fpft;
+  const StateMat fpft_block = fpft(dynamic_rows_, Eigen::all);
+  P(dynamic_rows_, dynamic_rows_) += (0.5 * dt * dt) * (fpft_block + fpft_block.transpose());
   // Velocity and attitude noise enter through C_bn, which is orthogonal: isotropic in NED.
   P.diagonal().segment<3>(L::kVel).array() += q_vel_ * dt;
   P.diagonal().segment<3>(L::kAtt).array() += q_att_ * dt;
@@ -140,13 +158,13 @@ namespace {
 
 void josephFromColumn(StateMat& P, const StateVec& a, double s, StateVec& K, const StateVec* mask) {
   // With a = P h and s = h^T P h + r, (I - K h^T) P (I - K h^T)^T + r K K^T expands to
-  // P - K a^T - a K^T + s K K^T for any gain K: the Joseph form in O(n^2).
+  // P - K a^T - a K^T + s K K^T for any gain K: the Joseph form in O(n^2). As the symmetric rank-2 update
+  // P - (K v^T + v K^T) with v = a - s K / 2 it is one pass over P, and an element and its mirror get the
+  // same two products, so the update keeps P symmetric (propagate() removes what rounding leaves).
   K = a / s;
   if (mask != nullptr) K.array() *= mask->array();
-  P.noalias() -= K * a.transpose();
-  P.noalias() -= a * K.transpose();
-  P.noalias() += s * (K * K.transpose());
-  P = 0.5 * (P + P.transpose()).eval();
+  const StateVec v = a - (0.5 * s) * K;
+  for (Eigen::Index j = 0; j < P.cols(); ++j) P.col(j).noalias() -= K * v(j) + v * K(j);
 }
 
 }  // namespace

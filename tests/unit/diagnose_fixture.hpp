@@ -43,9 +43,4 @@ inline double channelRatio(const ModelGap& g, const std::string& channel, const 
   return c != nullptr ? c->ratio : 0.0;
 }
 
-inline double channelLag1(const ModelGap& g, const std::string& channel, const std::string& segment) {
-  const ChannelGap* c = g.find(channel, segment);
-  return c != nullptr ? c->lag1 : 0.0;
-}
-
 }  // namespace imucal::testing

@@ -11,7 +11,6 @@
 namespace imucal {
 namespace {
 
-using testing::channelLag1;
 using testing::channelRatio;
 using testing::diagnoseSimulated;
 using testing::paperRecording;
@@ -52,16 +51,20 @@ TEST(DiagnoseHidden, LeverArmIsNamedAndTheAccelerometerGapShrinksFivefold) {
 }
 
 // A heading effect shows as a pattern in the heading innovations that 0.5 s block means bring out of the
-// heading noise: their RMS (1 when white) and lag-1 autocorrelation (0 when white).
+// heading noise: their RMS (1 when white) and lag-1 autocorrelation (0 when white, with a standard error of
+// 1/sqrt(blocks)). Before the effect is named the pattern is significant; after, the blocks are white.
 void expectHeadingBlocksWhiten(const DiagnoseStep& s) {
-  const double ratio_before = channelRatio(s.gap_before, "heading_block", "turning");
-  const double ratio_after = channelRatio(s.gap_after, "heading_block", "turning");
-  const double lag_before = channelLag1(s.gap_before, "heading_block", "turning");
-  const double lag_after = channelLag1(s.gap_after, "heading_block", "turning");
-  std::cout << "  heading block means in the turn: RMS " << ratio_before << " -> " << ratio_after << ", lag-1 "
-            << lag_before << " -> " << lag_after << '\n';
-  EXPECT_GT(ratio_before, 1.5 * ratio_after);
-  EXPECT_GT(lag_before, 3.0 * std::abs(lag_after));
+  const ChannelGap* before = s.gap_before.find("heading_block", "turning");
+  const ChannelGap* after = s.gap_after.find("heading_block", "turning");
+  ASSERT_NE(before, nullptr);
+  ASSERT_NE(after, nullptr);
+  const double lag_se = 1.0 / std::sqrt(static_cast<double>(after->count));
+  std::cout << "  heading block means in the turn (" << after->count << " blocks): RMS " << before->ratio << " -> "
+            << after->ratio << ", lag-1 " << before->lag1 << " -> " << after->lag1 << " (white: 0 +- " << lag_se
+            << ")\n";
+  EXPECT_GT(before->ratio, 1.5 * after->ratio);
+  EXPECT_GT(before->lag1, 3.0 * lag_se);
+  EXPECT_LT(std::abs(after->lag1), 3.0 * lag_se);
 }
 
 // Diagnoses the recording and expects exactly one effect, `id`, within 3 sigma of `hidden`.

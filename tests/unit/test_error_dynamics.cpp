@@ -155,11 +155,11 @@ TEST(ErrorDynamics, EarthRateTermsAreTheOnlyDifference) {
 
 TEST(ErrorDynamics, ApplyFEqualsDenseFTimesX) {
   FilterConfig config;
-  config.model.estimate(ParamBlock::AccelScale, true);
-  config.model.estimate(ParamBlock::GyroScale, true);
+  for (const auto& info : paramBlocks()) config.model.estimate(info.block, true);  // every block, gravity too
+  config.measurements.centre_motion.enabled = true;
   config.earth.earth_rate = true;
   config.earth.latitude = 0.7;
-  const StateLayout layout = StateLayout::make(config.model);
+  const StateLayout layout = StateLayout::make(config.model, true);
   const ErrorDynamics dyn(layout, config);
   Linearization lin;
   lin.c_bn = eulerToQuat(-0.5, 0.8, 2.9).toRotationMatrix();
@@ -270,15 +270,15 @@ TEST(ErrorDynamics, PropagateIsFirstOrderPhiPPhiTPlusQ) {
   // propagate() computes (I + F dt) P (I + F dt)^T + Q with Q the continuous white-noise terms integrated
   // over dt (velocity q_v dt, attitude q_a dt, position q_v dt^3/3 with cross term q_v dt^2/2, bias walks).
   FilterConfig config;
-  config.model.estimate(ParamBlock::AccelScale, true);
-  config.model.estimate(ParamBlock::GyroScale, true);
+  for (const auto& info : paramBlocks()) config.model.estimate(info.block, true);  // every block, gravity too
+  config.measurements.centre_motion.enabled = true;
   config.earth.earth_rate = true;
   config.earth.latitude = 0.4;
   config.noise.accel_white = 0.003;
   config.noise.gyro_white = 2e-4;
   config.noise.accel_bias_walk = 1e-4;
   config.noise.gyro_bias_walk = 3e-6;
-  const StateLayout layout = StateLayout::make(config.model);
+  const StateLayout layout = StateLayout::make(config.model, true);
   const ErrorDynamics dyn(layout, config);
   Linearization lin;
   lin.c_bn = eulerToQuat(0.3, -0.2, 2.0).toRotationMatrix();
@@ -296,6 +296,7 @@ TEST(ErrorDynamics, PropagateIsFirstOrderPhiPPhiTPlusQ) {
     const double qa = config.noise.gyro_white * config.noise.gyro_white;
     const double qba = config.noise.accel_bias_walk * config.noise.accel_bias_walk;
     const double qbg = config.noise.gyro_bias_walk * config.noise.gyro_bias_walk;
+    const double qc = std::pow(config.measurements.centre_motion.accelerationDensity(), 2);
     for (int i = 0; i < 3; ++i) {
       Q(L::kPos + i, L::kPos + i) = qv * dt * dt * dt / 3.0;
       Q(L::kPos + i, L::kVel + i) = Q(L::kVel + i, L::kPos + i) = qv * dt * dt / 2.0;
@@ -303,6 +304,11 @@ TEST(ErrorDynamics, PropagateIsFirstOrderPhiPPhiTPlusQ) {
       Q(L::kAtt + i, L::kAtt + i) = qa * dt;
       Q(L::kAccelBias + i, L::kAccelBias + i) = qba * dt;
       Q(L::kGyroBias + i, L::kGyroBias + i) = qbg * dt;
+      // The centre's velocity takes its driving noise; its displacement integrates it.
+      const int d = layout.centre() + i, u = d + 3;
+      Q(u, u) = qc * dt;
+      Q(d, d) = qc * dt * dt * dt / 3.0;
+      Q(d, u) = Q(u, d) = qc * dt * dt / 2.0;
     }
     const MatX ref = phi * MatX(P0) * phi.transpose() + Q;
     EXPECT_LT((MatX(P) - ref).cwiseAbs().maxCoeff(), 1e-12 * ref.cwiseAbs().maxCoeff()) << "dt " << dt;
@@ -317,7 +323,8 @@ TEST(ErrorDynamics, PropagateIsFirstOrderPhiPPhiTPlusQ) {
   EXPECT_NEAR(Z(L::kPos, L::kVel), qv * 0.01 * 0.01 / 2.0, 1e-22);
   EXPECT_NEAR(Z(L::kAtt + 2, L::kAtt + 2), config.noise.gyro_white * config.noise.gyro_white * 0.01, 1e-22);
   EXPECT_EQ(Z(L::kAtt, L::kVel), 0.0);
-  EXPECT_EQ(Z.bottomRightCorner(6, 6).norm(), 0.0);  // scale factors have no process noise
+  const int p = layout.paramCount() - 6;  // the parameters after the biases have no process noise
+  EXPECT_EQ(Z.block(L::kGyroBias + 3, L::kGyroBias + 3, p, p).norm(), 0.0);
 }
 
 TEST(ErrorDynamics, JosephScalarUpdateEqualsDenseJoseph) {

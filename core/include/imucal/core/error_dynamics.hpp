@@ -5,6 +5,7 @@
 // Error state: dp, dv (NED), phi (attitude error in NED, C_true = (I + [phi x]) C_est), accel bias, gyro
 // bias, then the optional blocks of StateLayout. Errors are true minus estimated.
 #include <Eigen/Core>
+#include <vector>
 
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/state_layout.hpp"
@@ -47,6 +48,12 @@ class ErrorDynamics {
   const StateLayout& layout() const { return layout_; }
 
  private:
+  // d(velocity, attitude error rate)/d(parameters) at lin: the only rows of F the parameters enter.
+  using ParamRows = Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::ColMajor, 6, kMaxStates>;
+  ParamRows paramRows(const Linearization& lin) const;
+  void applyF(const Linearization& lin, const ParamRows& param_rows, const StateMat& X, StateMat& out) const;
+
+  std::vector<Eigen::Index> dynamic_rows_;  // the states F has rows for: position, velocity, attitude, centre
   StateLayout layout_;
   EarthModel earth_;
   double q_vel_;   // accel white noise PSD
