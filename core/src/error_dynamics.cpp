@@ -6,6 +6,20 @@
 
 namespace imucal {
 
+namespace {
+
+// White noise of PSD q on a velocity triad over dt, and what it leaves on the position that integrates it.
+void addIntegratedWhiteNoise(StateMat& P, int pos, int vel, double q, double dt) {
+  for (int i = 0; i < 3; ++i) {
+    P(vel + i, vel + i) += q * dt;
+    P(pos + i, pos + i) += q * dt * dt * dt / 3.0;
+    P(pos + i, vel + i) += q * dt * dt / 2.0;
+    P(vel + i, pos + i) += q * dt * dt / 2.0;
+  }
+}
+
+}  // namespace
+
 ErrorDynamics::ErrorDynamics(const StateLayout& layout, const FilterConfig& config)
     : layout_(layout),
       earth_(config.earth),
@@ -74,11 +88,9 @@ void ErrorDynamics::applyF(const Linearization& lin, const ParamRows& param_rows
   out.middleRows<6>(L::kVel).noalias() = param_rows * X.middleRows(L::kParamStart, layout_.paramCount());
   out.middleRows<3>(L::kVel).noalias() -= f_n_skew * X.middleRows<3>(L::kAtt);
   if (layout_.hasCentre()) {
-    // d' = u, u' = -w^2 d - 2 z w u (+ noise): linear, so its error obeys the same.
     const int d = layout_.centre();
     out.middleRows<3>(d) = X.middleRows<3>(d + 3);
-    out.middleRows<3>(d + 3) = -(centre_omega_ * centre_omega_) * X.middleRows<3>(d) -
-                               (2.0 * CentreMotionConfig::kDamping * centre_omega_) * X.middleRows<3>(d + 3);
+    out.middleRows<3>(d + 3) = centreAcceleration(centre_omega_, X.middleRows<3>(d), X.middleRows<3>(d + 3));
   }
   if (earth_.earth_rate) {
     const Mat3 w_skew = skew(earth_.earthRateNed());
@@ -107,26 +119,15 @@ void ErrorDynamics::propagate(StateMat& P, const Linearization& lin, double dt) 
   P += dt * (fp + fp.transpose());
   const StateMat fpft_block = fpft(dynamic_rows_, Eigen::all);
   P(dynamic_rows_, dynamic_rows_) += (0.5 * dt * dt) * (fpft_block + fpft_block.transpose());
-  // Velocity and attitude noise enter through C_bn, which is orthogonal: isotropic in NED.
-  P.diagonal().segment<3>(L::kVel).array() += q_vel_ * dt;
+  // Velocity and attitude noise enter through C_bn, which is orthogonal: isotropic in NED. Position picks
+  // up the integrated velocity noise.
+  addIntegratedWhiteNoise(P, L::kPos, L::kVel, q_vel_, dt);
   P.diagonal().segment<3>(L::kAtt).array() += q_att_ * dt;
-  // Position picks up the integrated velocity noise.
-  P.diagonal().segment<3>(L::kPos).array() += q_vel_ * dt * dt * dt / 3.0;
-  for (int i = 0; i < 3; ++i) {
-    P(L::kPos + i, L::kVel + i) += q_vel_ * dt * dt / 2.0;
-    P(L::kVel + i, L::kPos + i) += q_vel_ * dt * dt / 2.0;
-  }
   P.diagonal().segment<3>(L::kAccelBias).array() += q_ba_ * dt;
   P.diagonal().segment<3>(L::kGyroBias).array() += q_bg_ * dt;
   if (layout_.hasCentre()) {
     // The driving noise enters the centre's velocity; its displacement integrates it, as position does.
-    const int d = layout_.centre();
-    for (int i = 0; i < 3; ++i) {
-      P(d + 3 + i, d + 3 + i) += centre_q_ * dt;
-      P(d + i, d + i) += centre_q_ * dt * dt * dt / 3.0;
-      P(d + i, d + 3 + i) += centre_q_ * dt * dt / 2.0;
-      P(d + 3 + i, d + i) += centre_q_ * dt * dt / 2.0;
-    }
+    addIntegratedWhiteNoise(P, layout_.centre(), layout_.centre() + 3, centre_q_, dt);
   }
 }
 
@@ -160,7 +161,7 @@ void josephFromColumn(StateMat& P, const StateVec& a, double s, StateVec& K, con
   // With a = P h and s = h^T P h + r, (I - K h^T) P (I - K h^T)^T + r K K^T expands to
   // P - K a^T - a K^T + s K K^T for any gain K: the Joseph form in O(n^2). As the symmetric rank-2 update
   // P - (K v^T + v K^T) with v = a - s K / 2 it is one pass over P, and an element and its mirror get the
-  // same two products, so the update keeps P symmetric (propagate() removes what rounding leaves).
+  // same two products, so the update keeps P exactly symmetric.
   K = a / s;
   if (mask != nullptr) K.array() *= mask->array();
   const StateVec v = a - (0.5 * s) * K;

@@ -12,8 +12,7 @@ Eskf::Eskf(const FilterConfig& config)
     : config_(config),
       layout_(StateLayout::make(config.model, config.measurements.centre_motion.enabled)),
       earth_(config.earth),
-      dynamics_(layout_, config),
-      centre_omega_(config.measurements.centre_motion.omega()) {
+      dynamics_(layout_, config) {
   params_ = VecX::Zero(layout_.paramCount());
   P_ = StateMat::Identity(layout_.size, layout_.size);
   dx_ = StateVec::Zero(layout_.size);
@@ -97,7 +96,7 @@ void Eskf::predict(const ImuSample& raw) {
     // The nominal centre follows the same damped dynamics (Phi = I + F dt, as the covariance).
     const Vec3 d = centre_.head<3>(), u = centre_.tail<3>();
     centre_.head<3>() += dt * u;
-    centre_.tail<3>() -= dt * (centre_omega_ * centre_omega_ * d + 2.0 * CentreMotionConfig::kDamping * centre_omega_ * u);
+    centre_.tail<3>() += dt * centreAcceleration(config_.measurements.centre_motion.omega(), d, u);
   }
   last_raw_ = raw;
 }

@@ -65,6 +65,12 @@ class ErrorDynamics {
   double centre_q_;
 };
 
+// The centre's damped dynamics, u' = -w^2 d - 2 z w u: its nominal value and its error obey the same.
+template <class D, class U>
+auto centreAcceleration(double omega, const Eigen::MatrixBase<D>& d, const Eigen::MatrixBase<U>& u) {
+  return (-(omega * omega) * d - (2.0 * CentreMotionConfig::kDamping * omega) * u).eval();
+}
+
 // Heading (yaw of C_bn) and its Jacobian row with respect to the error state (correct when tilted).
 double headingOf(const Mat3& c_bn);
 void headingJacobian(const Mat3& c_bn, const StateLayout& layout, StateVec& h);

@@ -118,7 +118,6 @@ class Eskf {
   IncrementConsistencyCheck* increments_ = nullptr;
   // Nominal displacement and velocity of the centre when its motion is modelled (zero otherwise).
   Eigen::Matrix<double, 6, 1> centre_ = Eigen::Matrix<double, 6, 1>::Zero();
-  double centre_omega_ = 0.0;
   int channel_ = 0;  // channel of the selector update in progress
 };
 
