@@ -8,6 +8,7 @@
 #include "imucal/io/config.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/io/param_units.hpp"
+#include "imucal/io/sim_formats.hpp"
 #include "imucal/sim/simulator.hpp"
 #include "imucal/sim/trajectory.hpp"
 #include "sim_filter_settings.hpp"

@@ -8,6 +8,7 @@
 #include "imucal/io/csv_writer.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/json_output.hpp"
+#include "imucal/io/sim_formats.hpp"
 #include "imucal/sim/simulator.hpp"
 
 namespace imucal::cli {

@@ -13,6 +13,7 @@
 #include "imucal/io/config.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/json_output.hpp"
+#include "imucal/io/sim_formats.hpp"
 
 int main(int argc, char** argv) {
   using namespace imucal;

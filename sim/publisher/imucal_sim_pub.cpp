@@ -11,6 +11,7 @@
 #include "fault_injection.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/json_output.hpp"
+#include "imucal/io/sim_formats.hpp"
 #include "imucal/lcmtypes.hpp"
 #include "imucal/sim/simulator.hpp"
 

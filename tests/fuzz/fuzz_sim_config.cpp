@@ -4,6 +4,7 @@
 
 #include "imucal/io/config.hpp"
 #include "imucal/io/errors.hpp"
+#include "imucal/io/sim_formats.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   try {

@@ -9,6 +9,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/errors.hpp"
+#include "imucal/io/sim_formats.hpp"
 #include "scratch_dir.hpp"
 
 namespace imucal::io {

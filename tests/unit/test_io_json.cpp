@@ -13,6 +13,7 @@
 #include "imucal/io/csv_table.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/json_output.hpp"
+#include "imucal/io/sim_formats.hpp"
 #include "scratch_dir.hpp"
 
 namespace imucal::io {

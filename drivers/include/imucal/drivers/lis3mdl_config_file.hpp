@@ -4,7 +4,7 @@
 #include <string>
 
 #include "imucal/drivers/config_fields.hpp"
-#include "imucal/drivers/emulation/lis3mdl_emulation.hpp"
+#include "imucal/drivers/emulation/magnetic_environment.hpp"
 #include "imucal/drivers/lis3mdl_driver.hpp"
 #include "imucal/drivers/mag_heading.hpp"
 

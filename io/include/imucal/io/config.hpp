@@ -6,14 +6,8 @@
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/magnetometer_heading.hpp"
 #include "imucal/io/csv_format.hpp"
-#include "imucal/sim/simulator.hpp"
 
 namespace imucal::io {
-
-// Absent keys keep the sim structs' defaults; `motion` is required (a list of segments, or `paper`).
-sim::SimConfig loadSimConfig(const std::string& path);
-// Same, from text; `name` stands in for the file name in messages.
-sim::SimConfig parseSimConfig(const std::string& yaml, const std::string& name);
 
 // Everything `calibrate` needs besides the data: how to read the files and how to run the filter.
 struct CalibrateConfig {

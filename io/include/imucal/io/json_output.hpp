@@ -1,19 +1,13 @@
 #pragma once
-// Result files: what the simulator applied (truth) and what the calibration found, as JSON, plus the
-// filter's history as CSV. Values appear in human units and in SI, each key naming its unit.
+// Result files: what the calibration found, as JSON, plus the filter's history as CSV (the simulator's
+// truth: sim_formats.hpp). Values appear in human units and in SI, each key naming its unit.
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "imucal/core/calibrator.hpp"
-#include "imucal/sim/simulator.hpp"
 
 namespace imucal::io {
-
-// Every applied error and setting of a simulation. "parameters" holds the truth under the same names and
-// units as resultToJson's (value at t = 0 and, for drifting biases, at the end and averaged over the run),
-// so a result can be compared with it key by key.
-nlohmann::json truthToJson(const sim::SimConfig& config, const sim::SimOutput& output, std::uint64_t seed);
 
 // Per parameter: value, sigma and prior sigma in human units and SI, converged, convergence_time_s (null
 // when it did not converge); measurement statistics, passes, duration and the final attitude.

@@ -1,7 +1,7 @@
 #include <cmath>
 
 #include "imucal/core/units.hpp"
-#include "imucal/io/config.hpp"
+#include "imucal/io/sim_formats.hpp"
 #include "imucal/io/config_sections.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/yaml_fields.hpp"

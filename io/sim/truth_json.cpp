@@ -1,5 +1,5 @@
 #include "imucal/core/units.hpp"
-#include "imucal/io/json_output.hpp"
+#include "imucal/io/sim_formats.hpp"
 #include "imucal/core/param_vector.hpp"
 #include "imucal/io/param_units.hpp"
 
