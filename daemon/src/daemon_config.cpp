@@ -50,7 +50,8 @@ void readHeading(YamlSection s, NodeConfig& n, ServiceConfig& c) {
   s.finish();
 }
 
-InputGateConfig readInput(YamlSection s, InputGateConfig g) {
+InputGateConfig readInput(YamlSection s, InputGateConfig g, NodeConfig& n) {
+  n.input_queue_messages = s.integer("queue_messages", n.input_queue_messages, Range::between(1.0, 1e6));
   g.max_gap = s.number("max_gap_s", g.max_gap, Range::positive());
   g.max_accel = s.number("max_accel_g", g.max_accel / units::kStandardGravity, Range::positive()) *
                 units::kStandardGravity;
@@ -124,7 +125,7 @@ DaemonConfig fromYaml(const YAML::Node& root, const std::string& name, const std
   readChannels(top.section("channels"), c.node);
   readPublish(top.section("publish"), c.node);
   readHeading(top.section("heading"), c.node, c.service);
-  c.service.gate = readInput(top.section("input"), c.service.gate);
+  c.service.gate = readInput(top.section("input"), c.service.gate, c.node);
   c.service.session = readSession(top.section("session"), c.service.session, c.service.automatic_sessions);
   c.service.filter = readCalibration(top, base_dir);
   top.finish();

@@ -39,6 +39,11 @@ void LcmNode::subscribe() {
       lcm_.subscribe(config_.heading_channel, &LcmNode::onBytes<imucal::heading_sample_t, &LcmNode::onHeading>, this);
   trigger_sub_ = lcm_.subscribe(config_.trigger_channel,
                                 &LcmNode::onBytes<imucal::calibration_trigger_t, &LcmNode::onTrigger>, this);
+  applyQueueCapacity();
+}
+
+void LcmNode::applyQueueCapacity() {
+  for (lcm::Subscription* sub : {imu_sub_, heading_sub_}) sub->setQueueCapacity(config_.input_queue_messages);
 }
 
 template <class Msg, void (LcmNode::*Handler)(const Msg&)>
@@ -70,6 +75,7 @@ void LcmNode::reconfigure(NodeConfig config) {
   if (inputs_changed) unsubscribe();
   config_ = std::move(config);
   if (inputs_changed) subscribe();
+  else applyQueueCapacity();
 }
 
 void LcmNode::onImu(const imucal::imu_sample_t& msg) {

@@ -15,6 +15,10 @@ std::uint64_t distanceUs(std::int64_t a, std::int64_t b) {
                : static_cast<std::uint64_t>(b) - static_cast<std::uint64_t>(a);
 }
 
+// Pairs in a row with the same frame order before the order is relied on, and orphans in a row (no pair
+// between) before it is forgotten.
+constexpr int kOrderEvidence = 3;
+
 }  // namespace
 
 J1939Imu::J1939Imu(const J1939ImuConfig& config)
@@ -64,13 +68,38 @@ std::optional<ImuReading> J1939Imu::add(const CanFrame& frame) {
     return std::nullopt;
   }
   if (id.pgn == kPgnAngularRate) {
+    dropOrphanedTrailer(Kind::Rate);
     if (rate_) counters_.increment("unpaired");
-    rate_ = PendingRate{frame.utime, decodeAngularRate(frame.data)};
+    rate_ = PendingRate{frame.utime, arrivals_++, false, decodeAngularRate(frame.data)};
   } else {
+    dropOrphanedTrailer(Kind::Accel);
     if (accel_) counters_.increment("unpaired");
-    accel_ = PendingAccel{frame.utime, decodeAcceleration(frame.data)};
+    accel_ = PendingAccel{frame.utime, arrivals_++, false, decodeAcceleration(frame.data)};
   }
   return pair();
+}
+
+void J1939Imu::dropOrphanedTrailer(Kind arriving) {
+  if (!leader_ || arriving != *leader_) return;
+  const bool trailer_waiting = arriving == Kind::Rate ? accel_ && !rate_ : rate_ && !accel_;
+  if (!trailer_waiting) return;
+  counters_.increment("unpaired");
+  if (arriving == Kind::Rate) accel_.reset();
+  else rate_.reset();
+  if (++orphans_in_a_row_ >= kOrderEvidence) {
+    leader_.reset();
+    order_agreeing_ = 0;
+    orphans_in_a_row_ = 0;
+  }
+}
+
+void J1939Imu::learnOrder(Kind first) {
+  orphans_in_a_row_ = 0;
+  if (first != order_candidate_) {
+    order_candidate_ = first;
+    order_agreeing_ = 0;
+  }
+  if (++order_agreeing_ >= kOrderEvidence) leader_ = first;
 }
 
 std::optional<ImuReading> J1939Imu::pair() {
@@ -79,8 +108,18 @@ std::optional<ImuReading> J1939Imu::pair() {
     counters_.increment("unpaired");  // the older frame's partner never came
     if (rate_->utime < accel_->utime) rate_.reset();
     else accel_.reset();
+    // With the order not known, the frame kept may be the trailer of the pair just broken, and the next
+    // frame would complete it with another cycle's leader.
+    if (!leader_) (rate_ ? rate_->suspect : accel_->suspect) = true;
     return std::nullopt;
   }
+  if (rate_->suspect || accel_->suspect) {
+    counters_.increment("unpaired");
+    rate_.reset();
+    accel_.reset();
+    return std::nullopt;
+  }
+  learnOrder(rate_->arrival < accel_->arrival ? Kind::Rate : Kind::Accel);
   const AngularRate r = rate_->rate;
   const Acceleration a = accel_->accel;
   // The rate frame's own latency byte describes it: its receive time minus that latency is the sample time.

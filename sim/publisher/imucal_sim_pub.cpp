@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <exception>
+#include <optional>
+#include <vector>
 #include <thread>
 
 #include "fault_injection.hpp"
@@ -31,6 +33,43 @@ struct Options {
   double heading_until = -1.0;  // s of data time after which no heading is published (< 0: never stops)
   std::string report;        // what was published, as JSON, for the test's checker
   double epoch_offset = 0.0;  // s added to the wall clock for data time 0
+  std::string record;        // an LCM event log of every message published, stamped when it was sent
+};
+
+// Every message goes out on LCM and, with --record, into an event log: a copy of the stream that no
+// subscriber's queue or socket buffer can have thinned (lcm-logger keeps 30 messages while it is busy).
+class Outlet {
+ public:
+  Outlet(const std::string& url, const std::string& record) : lcm_(url) {
+    if (!lcm_.good()) throw std::runtime_error("cannot open LCM at '" + url + "'");
+    if (!record.empty()) {
+      log_.emplace(record, "w");
+      if (!log_->good()) throw std::runtime_error("cannot write the event log '" + record + "'");
+    }
+  }
+  void send(const std::string& channel, const void* data, unsigned int size) {
+    if (lcm_.publish(channel, data, size) != 0) ++failed_;
+    if (!log_) return;
+    lcm::LogEvent e{};
+    e.timestamp = std::chrono::duration_cast<std::chrono::microseconds>(
+                      std::chrono::system_clock::now().time_since_epoch()).count();
+    e.channel = channel;
+    e.datalen = static_cast<std::int32_t>(size);
+    e.data = const_cast<void*>(data);
+    if (log_->writeEvent(&e) != 0) throw std::runtime_error("writing the event log failed");
+  }
+  std::size_t failed() const { return failed_; }
+  template <class Msg>
+  void send(const std::string& channel, const Msg& msg) {
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
+    msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    send(channel, bytes.data(), static_cast<unsigned int>(bytes.size()));
+  }
+
+ private:
+  lcm::LCM lcm_;
+  std::optional<lcm::LogFile> log_;
+  std::size_t failed_ = 0;
 };
 
 std::int64_t utimeOf(double epoch_s, double t) { return static_cast<std::int64_t>(std::llround((epoch_s + t) * 1e6)); }
@@ -39,8 +78,7 @@ int run(const Options& o) {
   const imucal::sim::SimConfig config = imucal::io::loadSimConfig(o.config);
   const imucal::sim::SimOutput out = imucal::sim::simulate(config, o.seed);
   if (!o.truth.empty()) imucal::io::writeJsonFile(o.truth, imucal::io::truthToJson(config, out, o.seed));
-  lcm::LCM lcm(o.lcm_url);
-  if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + o.lcm_url + "'");
+  Outlet out_lcm(o.lcm_url, o.record);
   const imucal::sim::FaultPlan plan = imucal::sim::parseFaultPlan(o.faults);
   const std::vector<imucal::sim::Injection> injections = imucal::sim::scheduleFaults(plan, out.imu.size(), o.seed);
   std::size_t next_injection = 0;
@@ -61,7 +99,7 @@ int run(const Options& o) {
       hm.heading = out.heading[h].heading;
       hm.heading_sigma = config.heading.noise;
       hm.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
-      lcm.publish(o.heading_channel, &hm);
+      out_lcm.send(o.heading_channel, hm);
       ++h;
     }
     imucal::imu_sample_t m{};
@@ -77,16 +115,18 @@ int run(const Options& o) {
     m.sensor_id = o.sensor_id;
     for (; next_injection < injections.size() && injections[next_injection].before == k; ++next_injection) {
       const std::vector<std::uint8_t> bad = imucal::sim::faultBytes(injections[next_injection].kind, m, previous);
-      lcm.publish(o.imu_channel, bad.data(), static_cast<unsigned int>(bad.size()));
+      out_lcm.send(o.imu_channel, bad.data(), static_cast<unsigned int>(bad.size()));
     }
-    lcm.publish(o.imu_channel, &m);
+    out_lcm.send(o.imu_channel, m);
     previous = m;
   }
   spdlog::info("imucal-sim-pub: published {} IMU and {} heading samples and {} bad messages", out.imu.size(), h,
                injections.size());
+  if (out_lcm.failed() > 0) spdlog::warn("imucal-sim-pub: LCM refused {} of them", out_lcm.failed());
   if (!o.report.empty()) {
     imucal::io::writeJsonFile(o.report, {{"imu", out.imu.size()},
                                          {"heading", h},
+                                         {"publish_failures", out_lcm.failed()},
                                          {"sensor_id", o.sensor_id},
                                          {"injected",
                                           {{"nan", plan.not_finite},
@@ -116,6 +156,7 @@ int main(int argc, char** argv) {
   app.add_option("--faults", o.faults, "Bad IMU messages to mix in: nan=N,backwards=N,duplicate=N,range=N,foreign=N,malformed=N");
   app.add_option("--heading-until", o.heading_until, "Stop publishing heading after this many seconds of data");
   app.add_option("--epoch-offset", o.epoch_offset, "Seconds added to the wall clock for data time 0");
+  app.add_option("--record", o.record, "Also write every published message to this LCM event log");
   app.add_option("--report", o.report, "Write the counts of what was published here (JSON)");
   CLI11_PARSE(app, argc, argv);
   try {

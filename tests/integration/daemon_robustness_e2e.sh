@@ -6,6 +6,9 @@
 #  2. SIGHUP with a broken configuration: refused with file:line, the daemon runs on;
 #  3. SIGHUP with a new configuration (sessions only on a trigger, another calibration channel): a
 #     calibration turn without a trigger is not calibrated; after imucal-trigger the next one is.
+#  The daemon is also paused (SIGSTOP) for 0.1 s a few times while samples flow, as a loaded machine's
+#  scheduler or hypervisor does: on resume LCM's receive thread drains the socket in a burst, and every
+#  sample must still be accepted (LCM's default queue of 30 per subscription dropped some).
 # At 10x, data time runs ahead of the wall clock: each later stream starts its data time after the last
 # one's (--epoch-offset), as a real sensor's would.
 # Usage: daemon_robustness_e2e.sh BUILD_DIR SOURCE_DIR
@@ -36,13 +39,21 @@ write_config true IMUCAL_CALIBRATION
 "$build/daemon/imucald" --config "$tmp/imucald.yaml" > "$tmp/daemon.log" 2>&1 &
 daemon=$!; pids+=("$daemon")
 
-echo "== bad messages and a heading that stops at 12 s: counted, rejected, calibration still right"
+pause_daemon() {  # times, seconds each
+  for _ in $(seq "$1"); do sleep 0.4; kill -STOP "$daemon"; sleep "$2"; kill -CONT "$daemon"; done
+}
+
+echo "== bad messages, a heading that stops at 12 s, a daemon paused 5 x 0.1 s: counted, rejected, calibration still right"
 "$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth1.json" --timeout 60 \
   --expect-report "$tmp/report1.json" &
 check=$!; pids+=("$check")
 "$build/sim/imucal-sim-pub" --config "$src/configs/paper-sim.yaml" --seed 11 --lcm-url "$url" --speed "$speed" \
   --truth "$tmp/truth1.json" --start-delay 2 --faults nan=3,backwards=2,duplicate=4,range=1,foreign=5,malformed=3 \
-  --heading-until 12 --report "$tmp/report1.json"
+  --heading-until 12 --report "$tmp/report1.json" &
+publisher=$!; pids+=("$publisher")
+sleep 2.5
+pause_daemon 5 0.1
+wait "$publisher"
 rc=0; wait "$check" || rc=$?
 [ "$rc" -eq 0 ] || fail "calibration or counters under bad input ($rc)"
 kill -0 "$daemon" || fail "the daemon died"

@@ -31,6 +31,7 @@ TEST(DaemonConfig, ShippedFileHasTheDefaults) {
   EXPECT_EQ(c.node.trigger_channel, d.node.trigger_channel);
   EXPECT_EQ(c.node.status_channel, d.node.status_channel);
   EXPECT_DOUBLE_EQ(c.node.heading_timeout, d.node.heading_timeout);
+  EXPECT_EQ(c.node.input_queue_messages, d.node.input_queue_messages);
   EXPECT_TRUE(c.service.sensors.empty());
   EXPECT_EQ(c.service.max_sensors, d.service.max_sensors);
   EXPECT_EQ(c.service.automatic_sessions, d.service.automatic_sessions);
@@ -54,7 +55,7 @@ restore: false
 channels: {imu: A_IMU, calibration: A_CAL}
 publish: {calibration_rate_hz: 5, status_rate_hz: 2}
 heading: {timeout_s: 0.5, keep_s: 60}
-input: {max_gap_s: 0.05, max_accel_g: 8, max_gyro_deg_per_s: 1000}
+input: {max_gap_s: 0.05, max_accel_g: 8, max_gyro_deg_per_s: 1000, queue_messages: 500}
 session:
   automatic: false
   min_turn_deg: 270
@@ -72,6 +73,7 @@ calibration:
   EXPECT_DOUBLE_EQ(c.node.heading_timeout, 0.5);
   EXPECT_DOUBLE_EQ(c.service.heading_keep, 60.0);
   EXPECT_DOUBLE_EQ(c.service.gate.max_gap, 0.05);
+  EXPECT_EQ(c.node.input_queue_messages, 500);
   EXPECT_NEAR(c.service.gate.max_accel, 8.0 * units::kStandardGravity, 1e-12);
   EXPECT_NEAR(c.service.gate.max_gyro, 1000.0 * units::deg_per_s, 1e-12);
   EXPECT_FALSE(c.service.automatic_sessions);
@@ -87,6 +89,8 @@ TEST(DaemonConfig, ErrorsNameFileLineAndKey) {
       << errorOf("channels:\n  imu: X\n  imuu: Y\n");
   EXPECT_NE(errorOf("input:\n  max_gap_s: -1\n").find("imucald.yaml:2: input.max_gap_s: must be > 0"), std::string::npos)
       << errorOf("input:\n  max_gap_s: -1\n");
+  EXPECT_NE(errorOf("input: {queue_messages: 0}\n").find("input.queue_messages"), std::string::npos)
+      << errorOf("input: {queue_messages: 0}\n");
   EXPECT_NE(errorOf("channels: {imu: SAME, calibration: SAME}\n").find("channels.calibration"), std::string::npos);
   EXPECT_NE(errorOf("sensors: [a, a]\n").find("listed twice"), std::string::npos);
   EXPECT_NE(errorOf("session: {automatic: maybe}\n").find("session.automatic: expected true or false"),

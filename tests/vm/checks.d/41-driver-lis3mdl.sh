@@ -25,5 +25,8 @@ kill -TERM "$mag_feeder"; wait "$mag_feeder"
 kill -INT "$imu_driver"; wait "$imu_driver"
 kill -TERM "$imu_feeder"; wait "$imu_feeder"
 stop_recording
+# Two real-time feeders, two drivers and lcm-logger share the VM's one TCG vCPU here, so how many of the
+# 80 Hz samples the driver reads in real time is the host's speed, not the driver's (85 of 285 skipped on
+# one CI run, 221 of 421 on a busy host): the skip bound only catches a driver that falls far behind.
 imucal-vm-lcm-check --name lis3mdl_driver_headings --log "$OUT/mag.lcmlog" --channel IMUCAL_HEADING --kind heading \
-  --expected "$OUT/drv-lis.csv" --min-samples 200 --heading-tol-deg 0.25
+  --expected "$OUT/drv-lis.csv" --min-samples 200 --heading-tol-deg 0.25 --max-skip-fraction 0.8

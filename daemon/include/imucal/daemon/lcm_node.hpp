@@ -57,6 +57,7 @@ class LcmNode {
     std::uint64_t imu = 0, heading = 0;
   };
   void subscribe();
+  void applyQueueCapacity();
   void unsubscribe();
   // Every subscription takes raw bytes and decodes them itself (imucal/lcm_decode.hpp): lcm-cpp's own
   // decoding runs inside LCM's C dispatch, where nothing can catch what the generated decoder throws.

@@ -15,6 +15,10 @@ struct NodeConfig {
   double status_rate_hz = 1.0;       // of data time while data flows, of wall time when it stops
   // Wall-clock seconds without a heading sample before the status calls heading stale (and it is logged).
   double heading_timeout = 2.0;
+  // Messages LCM keeps per input subscription while the daemon is busy (LCM's own default, 30, is 30 ms
+  // at 1 kHz: any scheduling hiccup on a loaded board dropped samples). Beyond it LCM drops, and the
+  // daemon sees sequence gaps.
+  int input_queue_messages = 20000;
 };
 
 }  // namespace imucal::daemon

@@ -3,6 +3,11 @@
 // an acceleration frame paired into one ImuReading (body FRD, SI). A reading is published only when all six
 // values are numbers and no figure of merit says error; not-available codes and error indicators are
 // counted, never turned into numbers.
+// Pairing is by receive time, and a sensor sends its two frames of a cycle in a fixed order: once a few
+// pairs in a row have shown that order, a trailing frame still waiting when the next leading frame comes
+// has lost its own leader and is dropped, so a pair split by bus or scheduler jitter wider than the pair
+// window is never completed with the next cycle's leader (a sample mixing two instants). Before the order
+// is known, a pair completed by a frame kept from such a split is dropped instead.
 #include <cstdint>
 #include <optional>
 
@@ -38,17 +43,33 @@ class J1939Imu {
   J1939ImuConfig config_;
   Counters counters_;
   std::optional<std::uint8_t> source_;
+  enum class Kind { Rate, Accel };
+  void dropOrphanedTrailer(Kind arriving);
+  void learnOrder(Kind first);
+
   struct PendingRate {
     std::int64_t utime;
+    std::uint64_t arrival;
+    bool suspect;  // kept from a pair broken by the window while the order was unknown
     j1939::AngularRate rate;
   };
   struct PendingAccel {
     std::int64_t utime;
+    std::uint64_t arrival;
+    bool suspect;
     j1939::Acceleration accel;
   };
   std::optional<PendingRate> rate_;
   std::optional<PendingAccel> accel_;
   std::optional<std::int64_t> last_utime_;
+  std::uint64_t arrivals_ = 0;
+  // The sensor's frame order: the kind that came first in the last pairs, how many pairs in a row agreed,
+  // and the learned leader once enough did. Orphans dropped in a row without a pair unlearn it (a sensor
+  // whose order changed would otherwise never pair again).
+  Kind order_candidate_ = Kind::Rate;
+  int order_agreeing_ = 0;
+  std::optional<Kind> leader_;
+  int orphans_in_a_row_ = 0;
 };
 
 }  // namespace imucal::drivers
