@@ -95,7 +95,7 @@ int live(const J1939FileConfig& cfg, Publisher& out, EventLoop& loop) {
 int main(int argc, char** argv) {
   CLI::App app{"imucal-j1939: a J1939 IMU on SocketCAN (or a candump recording), published as imucal::imu_sample_t on LCM"};
   node::DriverOptions o;
-  node::addDriverOptions(app, o, false);
+  node::addDriverOptions(app, o);
   std::string candump;
   double speed = 0.0;
   app.add_option("--candump", candump, "Replay this candump log (candump -l or -ta) instead of reading the bus")->check(CLI::ExistingFile);

@@ -1,80 +1,17 @@
 // imucal-lis3mdl: ST LIS3MDL over I2C -> heading_sample_t on LCM. The tilt for the compensation comes from
 // the IMU driver's samples on LCM (low-passed specific force); a magnetometer sample without a recent IMU
 // sample gives no heading (counted as no_tilt).
-#include <spdlog/spdlog.h>
-
-#include "driver_process.hpp"
-#include "i2c_process.hpp"
-#include "imucal/drivers/emulation/lis3mdl_emulation.hpp"
-#include "imucal/drivers/lis3mdl_config_file.hpp"
-#include "tilt_input.hpp"
-
-namespace {
+#include "lis3mdl_process.hpp"
 
 using namespace imucal::drivers;
-
-
-int run(const node::DriverOptions& o) {
-  const Lis3mdlFileConfig cfg = loadLis3mdlConfig(o.config);
-  EventLoop loop;
-  loop.stopOnSignals();
-  lcm::LCM lcm(o.lcm_url);
-  if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + o.lcm_url + "'");
-  SystemClock clock;
-  node::I2cProcess device(o, {cfg.bus, cfg.chip.address, cfg.data_ready, cfg.chip.odr_hz, cfg.poll_hz, "imucal-lis3mdl"}, clock,
-                          [&](const emulation::MotionSource& source, std::function<double()> time_s) {
-                            return std::make_unique<emulation::Lis3mdlEmulation>(source, std::move(time_s), cfg.emulation, cfg.chip.axis_map);
-                          });
-  Lis3mdlDriver driver(device.bus(), cfg.chip, clock);
-  driver.start();
-  // heading_sample_t has no sensor id: --sensor-id picks the IMU.
-  node::TiltInput tilt(TiltTracker(cfg.tilt_time_constant_s, cfg.tilt_sigma, static_cast<std::int64_t>(cfg.max_tilt_age_s * 1e6)),
-                       o.sensor_id.empty() ? cfg.imu_sensor_id : o.sensor_id);
-  lcm.subscribe(cfg.imu_channel, &node::TiltInput::onBytes, &tilt);
-  spdlog::info("{}: LIS3MDL ready: +-{} gauss, {} Hz, {}; tilt from {} ({}); publishing on {}", deviceName(device.bus(), cfg.chip.address),
-               cfg.chip.full_scale_gauss, cfg.chip.odr_hz, device.sampling(), cfg.imu_channel,
-               tilt.sensorId().empty() ? std::string("any sensor") : tilt.sensorId(), cfg.process.channel);
-
-  Counters heading_counters({"headings", "no_tilt"});
-  std::uint64_t published = 0;
-  device.wire(loop, [&](std::optional<std::int64_t> edge) {
-    const auto r = driver.read(edge);
-    if (!r || !loop.running()) return;
-    const auto t = tilt.tracker().at(r->utime);
-    if (!t) {
-      heading_counters.increment("no_tilt");
-      return;
-    }
-    const MagHeading h = headingFromField(r->field, *t, cfg.heading);
-    imucal::heading_sample_t m{};
-    m.utime = r->utime;
-    m.heading = h.heading;
-    m.heading_sigma = h.sigma;
-    m.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
-    lcm.publish(cfg.process.channel, &m);
-    if (o.print) node::printSample(m);
-    heading_counters.increment("headings");
-    if (o.max_samples > 0 && ++published >= o.max_samples) loop.stop();
-  });
-  node::verifyPeriodically(loop, cfg.process.config_check_period_s, [&] { return driver.verifyConfiguration(); });
-  loop.addFd(lcm.getFileno(), [&] { lcm.handle(); });
-  node::CounterLog counter_log(loop, cfg.process.counters_log_period_s, "lis3mdl",
-                               [&] {
-                                 return driver.counters().summary() + " " + heading_counters.summary() +
-                                        " imu_decode_errors=" + std::to_string(tilt.decodeErrors());
-                               });
-  loop.run();
-  node::logStop(loop, static_cast<std::int64_t>(published), "headings");
-  return 0;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"imucal-lis3mdl: ST LIS3MDL over I2C, tilt-compensated heading published as imucal::heading_sample_t on LCM"};
   node::DriverOptions o;
-  node::addDriverOptions(app, o, true);
+  node::addDriverOptions(app, o);
   CLI11_PARSE(app, argc, argv);
   node::setupLogging("imucal-lis3mdl", o.log_level);
-  return node::runGuarded([&] { return run(o); });
+  return node::runGuarded([&] {
+    return node::runLis3mdl(o, [](const node::I2cDeviceSetup& setup, const Lis3mdlFileConfig&) { return node::openI2cDevice(setup); });
+  });
 }

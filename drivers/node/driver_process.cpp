@@ -10,11 +10,7 @@
 
 #include "imucal/drivers/clock.hpp"
 #include "imucal/drivers/device_error.hpp"
-#include "imucal/io/config.hpp"
 #include "imucal/io/errors.hpp"
-#include "imucal/io/json_output.hpp"
-#include "imucal/io/sim_formats.hpp"
-#include "imucal/sim/simulator.hpp"
 
 namespace imucal::drivers::node {
 
@@ -24,19 +20,13 @@ static_assert(status::kDeviceTimeWrapped == imucal::imu_sample_t::STATUS_DEVICE_
 static_assert(status::kTemperatureInvalid == imucal::imu_sample_t::STATUS_TEMPERATURE_INVALID);
 static_assert(status::kDriverError == imucal::imu_sample_t::STATUS_DRIVER_ERROR);
 
-void addDriverOptions(CLI::App& app, DriverOptions& o, bool with_emulation) {
+void addDriverOptions(CLI::App& app, DriverOptions& o) {
   app.add_option("--config", o.config, "Driver configuration (YAML)")->required()->check(CLI::ExistingFile);
   app.add_option("--lcm-url", o.lcm_url, "LCM provider URL (default: LCM's own default)");
   app.add_option("--max-samples", o.max_samples, "Exit 0 after publishing this many samples (0 = run until stopped)")->capture_default_str();
   app.add_option("--sensor-id", o.sensor_id, "Published sensor_id (default: the config's sensor_id)");
   app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")->capture_default_str();
   app.add_flag("--print", o.print, "Also print every published sample on stdout (CSV: imu,utime,seq,ax..gz,temperature_c,status,sensor_id / heading,utime,heading,sigma)");
-  if (!with_emulation) return;
-  app.add_flag("--emulate", o.emulate, "Use a register-level emulation of the chip fed from the simulator instead of the bus");
-  app.add_option("--sim-config", o.sim_config, "With --emulate: simulator config (default: the paper scenario)")->check(CLI::ExistingFile);
-  app.add_option("--seed", o.seed, "With --emulate: simulator seed")->capture_default_str();
-  app.add_option("--truth", o.truth, "With --emulate: write the simulator's truth here (JSON)");
-  app.add_option("--emulate-epoch", o.emulate_epoch, "With --emulate: Unix time (s) of the motion's start, shared by all emulated drivers");
 }
 
 void setupLogging(const std::string& program, const std::string& level) {
@@ -44,17 +34,6 @@ void setupLogging(const std::string& program, const std::string& level) {
   spdlog::set_default_logger(spdlog::stderr_color_mt(program));
   spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ " + program + ": %v");
   spdlog::set_level(spdlog::level::from_str(level));
-}
-
-EmulatedMotion makeEmulatedMotion(const DriverOptions& o) {
-  const sim::SimConfig config = o.sim_config.empty() ? sim::paperScenario(5.0 * units::deg, true, o.seed) : io::loadSimConfig(o.sim_config);
-  sim::SimOutput out = sim::simulate(config, o.seed);
-  if (!o.truth.empty()) io::writeJsonFile(o.truth, io::truthToJson(config, out, o.seed));
-  EmulatedMotion m;
-  m.source = std::make_unique<emulation::SimulatedImuSource>(std::move(out));
-  SystemClock clock;
-  m.epoch_utime = o.emulate_epoch > 0.0 ? static_cast<std::int64_t>(std::llround(o.emulate_epoch * 1e6)) : clock.nowUtime() + 1'000'000;
-  return m;
 }
 
 imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const std::string& sensor_id) {

@@ -1,6 +1,6 @@
 #pragma once
-// What the three driver processes share: the contract flags, logging, the emulated motion for --emulate,
-// the periodic counter log, and turning readings into LCM messages.
+// What the driver processes share: the contract flags, logging, the periodic counter log, and turning
+// readings into LCM messages. (The emulated programs' extras are in emulated/.)
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <functional>
@@ -9,7 +9,6 @@
 #include <string>
 
 #include "imucal/drivers/counters.hpp"
-#include "imucal/drivers/emulation/motion_source.hpp"
 #include "imucal/drivers/event_loop.hpp"
 #include "imucal/drivers/imu_reading.hpp"
 #include "imucal/lcmtypes.hpp"
@@ -23,25 +22,11 @@ struct DriverOptions {
   std::string sensor_id;          // overrides the config's
   std::string log_level = "info";
   bool print = false;             // also print every published sample on stdout (CSV)
-  // --emulate: the device is a register-level emulation fed from the simulator.
-  bool emulate = false;
-  std::string sim_config;         // simulator config (YAML); empty = the paper scenario
-  std::uint64_t seed = 1;
-  std::string truth;              // write the simulator's truth here (JSON)
-  double emulate_epoch = 0.0;     // Unix time (s) of the motion's t = 0; 0 = one second after start
 };
 
-// --config, --lcm-url, --max-samples, --sensor-id, --log-level and the emulation flags.
-void addDriverOptions(CLI::App& app, DriverOptions& options, bool with_emulation);
+// --config, --lcm-url, --max-samples, --sensor-id, --log-level, --print.
+void addDriverOptions(CLI::App& app, DriverOptions& options);
 void setupLogging(const std::string& program, const std::string& level);
-
-// The simulated motion for --emulate: simulator output (sensor errors included) and its time origin.
-struct EmulatedMotion {
-  std::unique_ptr<emulation::SimulatedImuSource> source;
-  std::int64_t epoch_utime = 0;
-  double elapsedS(std::int64_t utime) const { return static_cast<double>(utime - epoch_utime) * 1e-6; }
-};
-EmulatedMotion makeEmulatedMotion(const DriverOptions& options);
 
 imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const std::string& sensor_id);
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Drivers end to end, inside a private network namespace whose only interface is lo:
-#   imucal-icm42688 --emulate + imucal-lis3mdl --emulate (register-level emulations fed with the paper
+#   imucal-icm42688-emulated + imucal-lis3mdl-emulated (register-level emulations fed with the paper
 #   motion from the simulator, in real time, sharing one motion epoch) -> LCM -> imucald -> imucal-cal-check
 #   against the simulator's truth. The LIS3MDL's tilt comes from the ICM driver's samples over LCM.
 # Then the CAN path: a simulated J1939 IMU written as a candump log (imucal-j1939-simlog), replayed in real
@@ -18,11 +18,11 @@ daemon=$!; pids+=("$daemon")
 check=$!; pids+=("$check")
 # The motion starts 3 s from now in both drivers (the subscribers and the drivers' startup come first).
 epoch=$(( $(date +%s) + 3 ))
-"$build/drivers/imucal-icm42688" --config "$src/drivers/configs/emulated-icm42688.yaml" --emulate \
+"$build/drivers/imucal-icm42688-emulated" --config "$src/drivers/configs/emulated-icm42688.yaml" \
   --sim-config "$src/configs/paper-sim.yaml" --seed 5 --truth "$tmp/truth.json" --emulate-epoch "$epoch" \
   --lcm-url "$url" --max-samples 3001 > "$tmp/icm.log" 2>&1 &
 icm=$!; pids+=("$icm")
-"$build/drivers/imucal-lis3mdl" --config "$src/drivers/configs/emulated-lis3mdl.yaml" --emulate \
+"$build/drivers/imucal-lis3mdl-emulated" --config "$src/drivers/configs/emulated-lis3mdl.yaml" \
   --sim-config "$src/configs/paper-sim.yaml" --seed 5 --emulate-epoch "$epoch" \
   --lcm-url "$url" --max-samples 2400 > "$tmp/mag.log" 2>&1 &
 mag=$!; pids+=("$mag")
@@ -46,7 +46,7 @@ check=$!; pids+=("$check")
 epoch=$(( $(date +%s) + 3 ))
 "$build/drivers/imucal-j1939-simlog" --sim-config "$src/configs/paper-sim.yaml" --seed 7 --epoch "$epoch" \
   --latency-ms 2.5 --out "$tmp/j1939.log" --truth "$tmp/truth2.json"
-"$build/drivers/imucal-lis3mdl" --config "$src/drivers/configs/emulated-lis3mdl.yaml" --emulate \
+"$build/drivers/imucal-lis3mdl-emulated" --config "$src/drivers/configs/emulated-lis3mdl.yaml" \
   --sim-config "$src/configs/paper-sim.yaml" --seed 7 --emulate-epoch "$epoch" \
   --lcm-url "$url" --max-samples 2400 > "$tmp/mag2.log" 2>&1 &
 mag=$!; pids+=("$mag")

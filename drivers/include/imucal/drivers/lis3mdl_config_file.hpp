@@ -21,7 +21,7 @@ struct Lis3mdlFileConfig {
   double max_tilt_age_s = 0.5;
   std::string imu_channel = "IMUCAL_IMU";
   std::string imu_sensor_id;                 // tilt only from this sensor (empty: any)
-  emulation::MagneticEnvironment emulation;  // --emulate only
+  emulation::MagneticEnvironment emulation;  // imucal-lis3mdl-emulated only
   ProcessConfig process;
 };
 
