@@ -3,12 +3,10 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 
-#include "imucal/drivers/clock.hpp"
 #include "imucal/drivers/device_error.hpp"
 #include "imucal/io/errors.hpp"
 
