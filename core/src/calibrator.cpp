@@ -11,6 +11,7 @@
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/heading_model.hpp"
+#include "imucal/core/imu_increment.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/lever_arm.hpp"
 #include "imucal/core/param_vector.hpp"
@@ -99,9 +100,14 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   filter.setWhiteness(&whiteness);
   IncrementConsistencyCheck increments(layout.paramCount());
   filter.setIncrementCheck(&increments);
+  // The filter steps once per `per_step` samples (see imu_increment.hpp); the last step takes what is left.
+  std::vector<double> intervals(imu.size() - 1);
+  for (std::size_t k = 1; k < imu.size(); ++k) intervals[k - 1] = imu[k].t - imu[k - 1].t;
+  const auto per_step = static_cast<std::size_t>(samplesPerFilterStep(std::move(intervals), config.filter_rate));
+  const std::size_t steps = (imu.size() - 1 + per_step - 1) / per_step;
   const std::size_t stride =
-      max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (imu.size() + max_history_epochs - 1) / max_history_epochs);
-  out.history.reserve(imu.size() / stride + 2);
+      max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (steps + max_history_epochs - 1) / max_history_epochs);
+  out.history.reserve(steps / stride + 2);
   std::size_t h = init.first_unused_heading;
   double heading_nis_sum = 0.0, velocity_nis_sum = 0.0;
   const HeadingErrors heading_errors{m.heading_bias, m.heading_latency};
@@ -120,6 +126,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     checkFinite(filter, imu, k);
     EpochRecord e;
     e.t = imu[k].t;
+    e.sample = k;
     e.params = filter.estimatedParams();
     e.sigmas = paramSigmas(filter.covariance(), layout);
     const NavState nav = filter.estimatedNav();
@@ -131,17 +138,34 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   };
   record(0);
 
-  for (std::size_t k = 1; k < imu.size(); ++k) {
-    // Heading samples strictly inside this IMU interval are applied at their own time.
-    while (use_heading && h < heading.size() && headingTime(h) < imu[k].t) {
-      const double th = headingTime(h);
-      if (th > filter.time()) {
-        filter.predict(interpolate(imu[k - 1], imu[k], th));
-        applyHeading(h);
+  std::vector<ImuSample> pending;  // the step's samples not yet predicted over
+  pending.reserve(per_step + 1);
+  const auto flush = [&] {
+    filter.predict(pending.data(), pending.size());
+    pending.clear();
+  };
+  for (std::size_t step = 0; step < steps; ++step) {
+    const std::size_t last = std::min(imu.size() - 1, (step + 1) * per_step);
+    for (std::size_t k = step * per_step + 1; k <= last; ++k) {
+      // A heading sample inside the step splits it: the filter is brought to its time and updated there. One
+      // at the step's last sample waits for the pseudo-observations, as at the sample itself.
+      bool at_sample = false;
+      while (use_heading && h < heading.size() &&
+             (headingTime(h) < imu[k].t || (k < last && headingTime(h) == imu[k].t))) {
+        const double th = headingTime(h);
+        if (th > filter.time()) {
+          at_sample = th == imu[k].t;
+          pending.push_back(at_sample ? imu[k] : interpolate(imu[k - 1], imu[k], th));
+          flush();
+          applyHeading(h);
+        } else if (at_sample && th == filter.time()) {
+          applyHeading(h);
+        }
+        ++h;
       }
-      ++h;
+      if (!at_sample) pending.push_back(imu[k]);
     }
-    filter.predict(imu[k]);
+    if (!pending.empty()) flush();
     if (m.zero_velocity) {
       velocity_nis_sum += filter.updateZeroVelocity(m.zero_velocity_sigma);
       ++out.stats.zero_velocity_updates;
@@ -151,9 +175,9 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
       ++out.stats.position_updates;
     }
     filter.correct();
-    while (use_heading && h < heading.size() && headingTime(h) == imu[k].t) applyHeading(h++);
+    while (use_heading && h < heading.size() && headingTime(h) == imu[last].t) applyHeading(h++);
     // NaN never turns finite again, so checking the recorded epochs (always the last) misses none.
-    if (k % stride == 0 || k + 1 == imu.size()) record(k);
+    if ((step + 1) % stride == 0 || step + 1 == steps) record(last);
   }
   if (out.stats.heading_updates > 0) out.stats.heading_nis_mean = heading_nis_sum / out.stats.heading_updates;
   if (out.stats.zero_velocity_updates > 0) {

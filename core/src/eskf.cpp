@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "imucal/core/imu_increment.hpp"
 #include "imucal/core/lever_arm.hpp"
 #include "imucal/core/rotation.hpp"
 
@@ -71,18 +72,24 @@ ImuSample Eskf::corrected(const ImuSample& raw) const {
   return s;
 }
 
-void Eskf::predict(const ImuSample& raw) {
-  const double dt = raw.t - last_raw_.t;
-  if (!(dt > 0.0)) throw std::invalid_argument("Eskf::predict: time must increase");
-  const ImuSample a = corrected(last_raw_);
-  const ImuSample b = corrected(raw);
+void Eskf::predict(const ImuSample* raw, std::size_t count) {
+  if (count == 0) return;
+  ImuIncrement increment;
+  ImuSample a = corrected(last_raw_);
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!(raw[i].t > (i == 0 ? last_raw_.t : raw[i - 1].t))) throw std::invalid_argument("Eskf::predict: time must increase");
+    const ImuSample b = corrected(raw[i]);
+    increment.add(a, b);
+    a = b;
+  }
+  const double dt = increment.duration();
   const Quat q0 = nav_.q_nb;
-  propagateNav(nav_, a, b, earth_);
+  propagateNav(nav_, increment, earth_);
   Linearization lin;
   lin.c_bn = q0.slerp(0.5, nav_.q_nb).toRotationMatrix();
   lin.f_b = config_.gravity_linearization ? Vec3(-(lin.c_bn.transpose() * earth_.gravityNed()))
-                                          : Vec3(0.5 * (a.accel + b.accel));
-  lin.w_b = 0.5 * (a.gyro + b.gyro);
+                                          : increment.meanSpecificForce();
+  lin.w_b = increment.meanRate();
   lin.accel_gain_inv = accel_gain_inv_;
   lin.gyro_gain_inv = gyro_gain_inv_;
   if (!feedback_) {
@@ -98,7 +105,7 @@ void Eskf::predict(const ImuSample& raw) {
     centre_.head<3>() += dt * u;
     centre_.tail<3>() += dt * centreAcceleration(config_.measurements.centre_motion.omega(), d, u);
   }
-  last_raw_ = raw;
+  last_raw_ = raw[count - 1];
 }
 
 void Eskf::scalarSelector(int index, double innovation, double variance, double& nis) {

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "imucal/core/imu_increment.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/rotation.hpp"
 
@@ -9,11 +10,16 @@ namespace imucal {
 
 namespace {
 
-Linearization linearizeBetween(const TrajectoryPoint& a, const TrajectoryPoint& b) {
+// Over the points first..last, as the filter linearizes one step: mid attitude, mean specific force and rate.
+Linearization linearizeStep(const std::vector<TrajectoryPoint>& traj, std::size_t first, std::size_t last) {
   Linearization lin;
-  lin.c_bn = a.q_nb.slerp(0.5, b.q_nb).toRotationMatrix();
-  lin.f_b = 0.5 * (a.f_b + b.f_b);
-  lin.w_b = 0.5 * (a.w_b + b.w_b);
+  lin.c_bn = traj[first].q_nb.slerp(0.5, traj[last].q_nb).toRotationMatrix();
+  const double span = traj[last].t - traj[first].t;
+  for (std::size_t k = first + 1; k <= last; ++k) {
+    const double w = 0.5 * (traj[k].t - traj[k - 1].t) / span;
+    lin.f_b += w * (traj[k - 1].f_b + traj[k].f_b);
+    lin.w_b += w * (traj[k - 1].w_b + traj[k].w_b);
+  }
   return lin;
 }
 
@@ -59,16 +65,21 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
     out.sigma_history.push_back(P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt());
   };
   record(t0);
-  for (std::size_t k = 1; k < traj.size(); ++k) {
-    const Linearization lin = linearizeBetween(traj[k - 1], traj[k]);
-    double t = traj[k - 1].t;
+  // The filter's steps (see calibrator.cpp): per_step points each, heading samples inside a step split it.
+  std::vector<double> intervals(traj.size() - 1);
+  for (std::size_t k = 1; k < traj.size(); ++k) intervals[k - 1] = traj[k].t - traj[k - 1].t;
+  const auto per_step = static_cast<std::size_t>(samplesPerFilterStep(std::move(intervals), config.filter_rate));
+  for (std::size_t first = 0; first + 1 < traj.size(); first += per_step) {
+    const std::size_t k = std::min(traj.size() - 1, first + per_step);
+    const Linearization lin = linearizeStep(traj, first, k);
+    double t = traj[first].t;
     while (use_heading && h < heading_times.size() && heading_times[h] <= traj[k].t) {
       const double th = heading_times[h++];
       if (th <= t) continue;
       dynamics.propagate(P, lin, th - t);
       t = th;
-      const double w = (th - traj[k - 1].t) / (traj[k].t - traj[k - 1].t);
-      headingJacobian(traj[k - 1].q_nb.slerp(w, traj[k].q_nb).toRotationMatrix(), layout, hrow);
+      const double w = (th - traj[first].t) / (traj[k].t - traj[first].t);
+      headingJacobian(traj[first].q_nb.slerp(w, traj[k].q_nb).toRotationMatrix(), layout, hrow);
       josephScalarUpdate(P, hrow, m.heading_sigma * m.heading_sigma, K, s, mask);
     }
     if (traj[k].t > t) dynamics.propagate(P, lin, traj[k].t - t);

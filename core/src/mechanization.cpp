@@ -6,21 +6,24 @@
 
 namespace imucal {
 
-void propagateNav(NavState& nav, const ImuSample& a, const ImuSample& b, const EarthModel& earth) {
-  const double dt = b.t - a.t;
+void propagateNav(NavState& nav, const ImuIncrement& increment, const EarthModel& earth) {
+  const double dt = increment.duration();
   const Vec3 w_ie = earth.earthRateNed();
-  // Rotation increment for a linearly varying rate, including the coning term.
-  const Vec3 dtheta = 0.5 * (a.gyro + b.gyro) * dt + (a.gyro.cross(b.gyro)) * (dt * dt / 12.0);
-  const Vec3 dv_b = 0.5 * (a.accel + b.accel) * dt;
-  // Mid-step attitude, including the navigation frame's own rotation over the half step.
-  const Quat q_mid = rotationVectorToQuat(-0.5 * w_ie * dt) * nav.q_nb * rotationVectorToQuat(0.5 * dtheta);
-  // Rotation compensation of the velocity increment is second order in dtheta and folded in by q_mid.
-  const Vec3 dv_n = q_mid * dv_b;
+  // The increment is resolved in the start body frame; the navigation frame's own rotation over the
+  // interval enters at its middle.
+  const Quat q_start = rotationVectorToQuat(-0.5 * w_ie * dt) * nav.q_nb;
   const Vec3 v0 = nav.v;
-  nav.v += dv_n + (earth.gravityNed() - 2.0 * w_ie.cross(v0)) * dt;
-  nav.p += 0.5 * (v0 + nav.v) * dt;
-  nav.q_nb = rotationVectorToQuat(-w_ie * dt) * nav.q_nb * rotationVectorToQuat(dtheta);
+  const Vec3 a_n = earth.gravityNed() - 2.0 * w_ie.cross(v0);
+  nav.v += q_start * increment.velocity() + a_n * dt;
+  nav.p += v0 * dt + q_start * increment.position() + 0.5 * a_n * (dt * dt);
+  nav.q_nb = rotationVectorToQuat(-w_ie * dt) * nav.q_nb * increment.rotation();
   nav.q_nb.normalize();
+}
+
+void propagateNav(NavState& nav, const ImuSample& a, const ImuSample& b, const EarthModel& earth) {
+  ImuIncrement increment;
+  increment.add(a, b);
+  propagateNav(nav, increment, earth);
 }
 
 ImuSample interpolate(const ImuSample& a, const ImuSample& b, double t) {

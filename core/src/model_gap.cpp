@@ -59,16 +59,23 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
   ModelGap gap;
   gap.log_likelihood = result.log_likelihood;
   const auto& history = result.history;
-  const std::size_t n = std::min(imu.size(), history.size());
+  if (history.size() < 2) return gap;
+  const std::size_t n = std::min(imu.size(), history.back().sample + 1);
   if (n < 2) return gap;
 
   // Innovations, by the segment of the epoch they belong to.
-  std::vector<double> times(n);
-  for (std::size_t k = 0; k < n; ++k) times[k] = history[k].t;
+  std::vector<double> times(history.size());
+  for (std::size_t k = 0; k < history.size(); ++k) times[k] = history[k].t;
   const auto stillAt = [&](double t) {
     const auto it = std::upper_bound(times.begin(), times.end(), t);
     const std::size_t k = it == times.begin() ? 0 : static_cast<std::size_t>(it - times.begin()) - 1;
-    return static_cast<bool>(history[std::min(k, n - 1)].still);
+    return static_cast<bool>(history[std::min(k, history.size() - 1)].still);
+  };
+  // The filter step IMU sample k belongs to: the first epoch that ends at or after it.
+  const auto epochOf = [&](std::size_t k) {
+    const auto it = std::lower_bound(history.begin(), history.end(), k,
+                                     [](const EpochRecord& e, std::size_t sample) { return e.sample < sample; });
+    return it == history.end() ? history.size() - 1 : static_cast<std::size_t>(it - history.begin());
   };
   std::vector<Accumulator> innov(Eskf::Innovation::kCount);
   ResidualSeries heading_series{"heading", {}, {}};
@@ -118,7 +125,7 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
   // Each epoch's attitude goes with that epoch's parameter estimates (the filter's own pairing; the final
   // estimates with early attitudes would mix tilt and horizontal bias from different times).
   const auto errorsAt = [&](std::size_t k, TriadErrors& accel, TriadErrors& gyro) {
-    const CalibrationParams p = toCalibrationParams(layout, history[k].params, model.filter.model);
+    const CalibrationParams p = toCalibrationParams(layout, history[epochOf(k)].params, model.filter.model);
     accel = p.imu.accel;
     gyro = p.imu.gyro;
   };
@@ -129,9 +136,16 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
 
   Accumulator accel_acc[3];
   ResidualSeries accel_series[3] = {{"accel_x", {}, {}}, {"accel_y", {}, {}}, {"accel_z", {}, {}}};
+  // Between the epochs of a step the attitude is interpolated in time.
   const auto quatAt = [&](std::size_t k) {
-    const Vec3& e = history[k].euler;
-    return eulerToQuat(e.x(), e.y(), e.z());
+    const std::size_t j = epochOf(k);
+    const auto quatOf = [&](std::size_t i) {
+      const Vec3& e = history[i].euler;
+      return eulerToQuat(e.x(), e.y(), e.z());
+    };
+    if (history[j].sample == k || j == 0) return quatOf(j);
+    const double t0 = history[j - 1].t, t1 = history[j].t;
+    return quatOf(j - 1).slerp((imu[k].t - t0) / (t1 - t0), quatOf(j));
   };
   std::size_t start = 0;
   while (start + 1 < n) {
@@ -154,7 +168,7 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
       const Vec3 f_true = leverArmAcceleration(w_nb, alpha, r) - c.transpose() * g_n;
       simulated += dt * accel.apply(f_true);
       measured += dt * 0.5 * (imu[k].accel + imu[k + 1].accel);
-      all_still = all_still && history[k].still;
+      all_still = all_still && history[epochOf(k)].still;
     }
     const Vec3 accel_residual = (measured - simulated) / span;
     const double t_mid = 0.5 * (imu[start].t + imu[end].t);

@@ -222,6 +222,7 @@ void readFilter(YamlSection s, FilterConfig& f) {
   f.gravity_linearization = s.boolean("gravity_linearization", f.gravity_linearization);
   f.open_loop_refinement = s.boolean("open_loop_refinement", f.open_loop_refinement);
   f.alignment_time = s.number("alignment_time_s", f.alignment_time, Range::positive());
+  f.filter_rate = s.number("rate_hz", f.filter_rate, Range::between(1.0, 10000.0));
   f.converged_sigma_ratio = s.number("converged_sigma_ratio", f.converged_sigma_ratio,
                                      {[](double v) { return v > 0.0 && v <= 1.0; }, "must be in (0, 1]"});
   s.finish();

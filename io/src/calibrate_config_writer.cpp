@@ -136,6 +136,7 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   emitBool(out, "gravity_linearization", f.gravity_linearization);
   emitBool(out, "open_loop_refinement", f.open_loop_refinement);
   emitNumber(out, "alignment_time_s", f.alignment_time);
+  emitNumber(out, "rate_hz", f.filter_rate);
   emitNumber(out, "converged_sigma_ratio", f.converged_sigma_ratio);
   out << YAML::EndMap;
 }

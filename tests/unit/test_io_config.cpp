@@ -283,6 +283,7 @@ filter:
   gravity_linearization: false
   open_loop_refinement: false
   alignment_time_s: 2.5
+  rate_hz: 200
   converged_sigma_ratio: 0.1
 )";
 
@@ -351,6 +352,7 @@ TEST(IoConfig, CalibrateConfigConvertsEveryKey) {
   EXPECT_FALSE(f.gravity_linearization);
   EXPECT_FALSE(f.open_loop_refinement);
   EXPECT_EQ(f.alignment_time, 2.5);
+  EXPECT_EQ(f.filter_rate, 200.0);
   EXPECT_EQ(f.converged_sigma_ratio, 0.1);
 }
 
@@ -402,6 +404,7 @@ TEST(IoConfig, CalibrateConfigErrorsNameLineAndKey) {
                        ":2: measurements.centre_displacement_mm: must be > 0 (got -1)");
   expectCalibrateError("filter:\n  passes: 0\n", ":2: filter.passes: must be between 1 and 100 (got 0)");
   expectCalibrateError("filter:\n  alignment_time_s: 0\n", ":2: filter.alignment_time_s: must be > 0");
+  expectCalibrateError("filter:\n  rate_hz: 0\n", ":2: filter.rate_hz: must be between 1 and 10000 (got 0)");
   expectCalibrateError("filter:\n  converged_sigma_ratio: 1.5\n", ":2: filter.converged_sigma_ratio: must be in (0, 1]");
   expectCalibrateError("model:\n  misalignment: true\n", ":2: model: unknown key 'misalignment'");
   expectCalibrateError("noise: {vrw: 0.1}\n", ":1: noise: unknown key 'vrw'");
@@ -442,6 +445,7 @@ TEST(IoConfig, CalibrateConfigRoundTripsThroughItsYaml) {
   EXPECT_EQ(b.filter.gravity_linearization, a.filter.gravity_linearization);
   EXPECT_EQ(b.filter.open_loop_refinement, a.filter.open_loop_refinement);
   EXPECT_EQ(b.filter.converged_sigma_ratio, a.filter.converged_sigma_ratio);
+  EXPECT_EQ(b.filter.filter_rate, a.filter.filter_rate);
   // Human units and clean numbers, not float noise from the SI round trip.
   EXPECT_NE(yaml.find("arw_deg_per_sqrt_h: 0.5\n"), std::string::npos) << yaml;
   EXPECT_NE(yaml.find("gyro_bias_deg_per_h: 2000\n"), std::string::npos) << yaml;

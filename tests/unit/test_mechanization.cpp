@@ -29,13 +29,7 @@ std::vector<double> unevenTimes(double duration, double lo, double hi, std::uint
   return t;
 }
 
-ImuSample sample(double t, const Vec3& accel, const Vec3& gyro) {
-  ImuSample s;
-  s.t = t;
-  s.accel = accel;
-  s.gyro = gyro;
-  return s;
-}
+ImuSample sample(double t, const Vec3& accel, const Vec3& gyro) { return ImuSample{t, accel, gyro}; }
 
 // Reference attitude for q' = q (0, w(t)/2) by RK4 with many small steps (error ~ (h/n)^4).
 Quat integrateReference(Quat q, double t0, double t1, const std::function<Vec3(double)>& w, int n) {

@@ -72,13 +72,7 @@ TEST(StaticDetector, ConstantRateTurnIsMoving) {
   EXPECT_EQ(expectAll(out.imu, v, 11.5, 15.5, true), 401);
 }
 
-ImuSample at(double t, const Vec3& accel, const Vec3& gyro) {
-  ImuSample s;
-  s.t = t;
-  s.accel = accel;
-  s.gyro = gyro;
-  return s;
-}
+ImuSample at(double t, const Vec3& accel, const Vec3& gyro) { return ImuSample{t, accel, gyro}; }
 
 TEST(StaticDetector, BiasDoesNotMatterSpreadDoes) {
   // 10 s at 100 Hz: a large constant bias is still; a 0.5 s burst of 2 rad/s alternating gyro is not.

@@ -17,9 +17,10 @@
 
 namespace imucal {
 
-// One IMU epoch of the final pass.
+// One filter step of the final pass (one IMU sample when the sensor is no faster than the filter rate).
 struct EpochRecord {
   double t = 0.0;
+  std::size_t sample = 0;  // index of the step's last IMU sample, counted from CalibrationResult::first_sample
   VecX params;   // calibration parameters in state order (see StateLayout::params()), SI
   VecX sigmas;   // their 1-sigma
   Vec3 euler = Vec3::Zero();  // roll, pitch, yaw, rad
@@ -66,8 +67,8 @@ struct CalibrationResult {
   WhiteNoiseEstimate noise_measured;
   BiasWalkEstimate bias_walk_measured;
   VecX convergence_time;           // s from the first sample; NaN where not converged
-  // Index of the recording's first sample used (the start of its first quiet stretch); history[k] is
-  // sample first_sample + k.
+  // Index of the recording's first sample used (the start of its first quiet stretch); history[k] ends at
+  // sample first_sample + history[k].sample.
   std::size_t first_sample = 0;
   std::vector<EpochRecord> history;
   MeasurementStats stats;
@@ -88,8 +89,8 @@ inline constexpr const char* kConfoundedPrefix = "determined only in a combinati
 struct CalibrateOptions {
   bool keep_innovations = false;
   // At most this many epochs in the history (evenly spread, first and last always kept); 0: every epoch,
-  // which the diagnosis needs (it pairs history[k] with imu[k]). A record costs about 0.5 kB, so an hour at
-  // 1 kHz kept whole is 1.8 GB.
+  // which the diagnosis needs (it pairs each IMU sample with the step it belongs to). A record costs about
+  // 0.5 kB, so an hour of steps at 1 kHz kept whole is 1.8 GB.
   std::size_t max_history_epochs = 0;
   // Calibrate each half of the recording alone too, and call nothing converged whose halves disagree by
   // more than 4 combined sigma (costs about one more run).

@@ -1,6 +1,7 @@
 #pragma once
 // Error-state Kalman filter on the loosely coupled INS model, with pseudo-observations in place of GNSS.
 // Measurements accumulate into the error state; correct() feeds it back into the nominal state and resets.
+#include <cstddef>
 #include <vector>
 
 #include "imucal/core/error_dynamics.hpp"
@@ -24,7 +25,10 @@ class Eskf {
   void initialize(const ImuSample& first_raw, const NavState& nav, const VecX& params, const StateMat& P0,
                   const VecX& prior_mean = VecX());
   // Advances nominal state and covariance to raw.t (> time()).
-  void predict(const ImuSample& raw);
+  void predict(const ImuSample& raw) { predict(&raw, 1); }
+  // One filter step over count consecutive raw samples (each later than the one before, the first later
+  // than time()): they are corrected and integrated into one increment, and the covariance takes one step.
+  void predict(const ImuSample* raw, std::size_t count);
 
   // Pseudo-observation: the device turns about its measurement centre, so its velocity is zero.
   // Returns the sum of the three components' normalized innovation squared.

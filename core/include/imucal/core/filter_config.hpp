@@ -89,6 +89,11 @@ struct FilterConfig {
   double alignment_time = 1.0;
   // A parameter counts as converged when its sigma has fallen below this fraction of its prior sigma.
   double converged_sigma_ratio = 0.2;
+  // Hz. The filter steps (covariance and pseudo-observations) at about this rate whatever the sensor's:
+  // faster samples are integrated into one increment per step (see imu_increment.hpp), so a sensor read at
+  // 1-8 kHz costs little more than one at this rate and gives the same answer. A slower sensor steps it once
+  // per sample.
+  double filter_rate = 100.0;
 };
 
 }  // namespace imucal

@@ -2,6 +2,7 @@
 // Strapdown mechanization in a local-level NED frame around a fixed point (the device stays within
 // metres of where it started, so transport rate and gravity change with position are negligible).
 #include "imucal/core/earth.hpp"
+#include "imucal/core/imu_increment.hpp"
 #include "imucal/core/types.hpp"
 
 namespace imucal {
@@ -12,8 +13,10 @@ struct NavState {
   Quat q_nb = Quat::Identity();
 };
 
-// Integrates corrected specific force and inertial rate from sample a to sample b (any dt > 0); both are
-// taken as varying linearly over the interval, which gives the second-order coning term exactly.
+// Advances the state over one increment of corrected samples (see imu_increment.hpp).
+void propagateNav(NavState& nav, const ImuIncrement& increment, const EarthModel& earth);
+// The same over the single step from sample a to sample b (any dt > 0); both are taken as varying
+// linearly over the interval, which gives the second-order coning term exactly.
 void propagateNav(NavState& nav, const ImuSample& a, const ImuSample& b, const EarthModel& earth);
 
 // Linear interpolation of a sample at time t between a and b.
