@@ -4,6 +4,7 @@
 
 #include "imucal/io/errors.hpp"
 #include "imucal/io/lcm_log_file.hpp"
+#include "imucal/lcm_convert.hpp"
 #include "imucal/lcm_decode.hpp"
 
 namespace imucal::cli {
@@ -30,29 +31,28 @@ LcmLogInput readLcmLog(const std::string& path, const std::string& imu_channel, 
                        const std::string& sensor_id) {
   io::LcmLogReader log(path);
   LcmLogInput out;
-  std::vector<std::pair<std::int64_t, ImuSample>> imu;
-  std::vector<std::pair<std::int64_t, double>> heading;
+  std::vector<StampedImu> imu;
+  std::vector<heading_sample_t> heading;
+  ImuMessage message;
   for (std::optional<io::LcmLogEvent> e = log.next(); e; e = log.next()) {
     ++out.events;
     if (e->channel == imu_channel) {
-      imucal::imu_sample_t m;
-      if (!decodeMessage(e->data.data(), e->data.size(), m))
-        throw io::InputError(eventName(path, out.events, e->channel) + " is not an imu_sample_t");
-      checkUtime(m.utime, path, out.events, e->channel);
-      if (m.sensor_id != sensor_id) {
+      const std::string why = decodeImuMessage(e->data.data(), e->data.size(), message);
+      if (!why.empty()) throw io::InputError(eventName(path, out.events, e->channel) + " is " + why);
+      if (message.sensor_id != sensor_id) {
         ++out.skipped_other_sensor;
         continue;
       }
-      ImuSample s;
-      s.accel = Vec3(m.accel[0], m.accel[1], m.accel[2]);
-      s.gyro = Vec3(m.gyro[0], m.gyro[1], m.gyro[2]);
-      imu.emplace_back(m.utime, s);
+      for (const StampedImu& s : message.samples) {
+        checkUtime(s.utime, path, out.events, e->channel);
+        imu.push_back(s);
+      }
     } else if (e->channel == heading_channel) {
       imucal::heading_sample_t m;
       if (!decodeMessage(e->data.data(), e->data.size(), m))
         throw io::InputError(eventName(path, out.events, e->channel) + " is not a heading_sample_t");
       checkUtime(m.utime, path, out.events, e->channel);
-      heading.emplace_back(m.utime, m.heading);
+      heading.push_back(m);
     }
   }
   out.skipped_bytes = log.skippedBytes();
@@ -60,13 +60,11 @@ LcmLogInput readLcmLog(const std::string& path, const std::string& imu_channel, 
   if (imu.empty())
     throw io::InputError(path + ": no " + imu_channel + " samples of sensor '" + io::excerpt(sensor_id) + "'");
   // Times relative to the first IMU sample keep microsecond resolution in a double.
-  const std::int64_t t0 = imu.front().first;
-  out.start_utime_s = static_cast<double>(t0) * 1e-6;
-  for (auto& [utime, s] : imu) {
-    s.t = static_cast<double>(utime - t0) * 1e-6;
-    out.imu.push_back(s);
-  }
-  for (const auto& [utime, h] : heading) out.heading.push_back({static_cast<double>(utime - t0) * 1e-6, h});
+  const std::int64_t t0 = imu.front().utime;
+  out.start_utime_s = secondsSince(t0);
+  out.imu.reserve(imu.size());
+  for (const StampedImu& s : imu) out.imu.push_back(toCore(s, t0));
+  for (const heading_sample_t& h : heading) out.heading.push_back(toCore(h, t0));
   return out;
 }
 

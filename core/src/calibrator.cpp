@@ -11,11 +11,11 @@
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/heading_model.hpp"
-#include "imucal/core/imu_increment.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/lever_arm.hpp"
 #include "imucal/core/param_vector.hpp"
 #include "imucal/core/rotation.hpp"
+#include "imucal/core/sample_clock.hpp"
 #include "imucal/core/static_detector.hpp"
 #include "imucal/core/units.hpp"
 
@@ -101,9 +101,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   IncrementConsistencyCheck increments(layout.paramCount());
   filter.setIncrementCheck(&increments);
   // The filter steps once per `per_step` samples (see imu_increment.hpp); the last step takes what is left.
-  std::vector<double> intervals(imu.size() - 1);
-  for (std::size_t k = 1; k < imu.size(); ++k) intervals[k - 1] = imu[k].t - imu[k - 1].t;
-  const auto per_step = static_cast<std::size_t>(samplesPerFilterStep(std::move(intervals), config.filter_rate));
+  const auto per_step = static_cast<std::size_t>(samplesPerSpan(sampleIntervals(imu), 1.0 / config.filter_rate));
   const std::size_t steps = (imu.size() - 1 + per_step - 1) / per_step;
   const std::size_t stride =
       max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (steps + max_history_epochs - 1) / max_history_epochs);
@@ -415,6 +413,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   const HeadingErrors heading_errors{config.measurements.heading_bias, config.measurements.heading_latency};
   for (auto& h : heading) h.heading = heading_errors.correct(h.heading);
   if (config.passes < 1) throw std::invalid_argument("calibrate: passes must be at least 1");
+  if (!(config.filter_rate > 0.0)) throw std::invalid_argument("calibrate: the filter rate must be positive");
   const StateLayout layout = StateLayout::make(config.model, config.measurements.centre_motion.enabled);
 
   result.layout = layout;

@@ -1,6 +1,5 @@
 #include "imucal/core/imu_increment.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -22,17 +21,6 @@ void ImuIncrement::add(const ImuSample& a, const ImuSample& b) {
   force_sum_ += force * h;
   rate_sum_ += 0.5 * (a.gyro + b.gyro) * h;
   duration_ += h;
-}
-
-int samplesPerFilterStep(std::vector<double> intervals, double filter_rate) {
-  if (!(filter_rate > 0.0)) throw std::invalid_argument("samplesPerFilterStep: the filter rate must be positive");
-  if (intervals.empty()) return 1;
-  const auto mid = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
-  std::nth_element(intervals.begin(), mid, intervals.end());
-  const double median = *mid;
-  if (!(median > 0.0)) return 1;
-  const double n = std::round(1.0 / (filter_rate * median));
-  return static_cast<int>(std::clamp(n, 1.0, 1e6));
 }
 
 }  // namespace imucal

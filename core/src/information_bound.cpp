@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "imucal/core/imu_increment.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/rotation.hpp"
+#include "imucal/core/sample_clock.hpp"
 
 namespace imucal {
 
@@ -68,7 +68,7 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
   // The filter's steps (see calibrator.cpp): per_step points each, heading samples inside a step split it.
   std::vector<double> intervals(traj.size() - 1);
   for (std::size_t k = 1; k < traj.size(); ++k) intervals[k - 1] = traj[k].t - traj[k - 1].t;
-  const auto per_step = static_cast<std::size_t>(samplesPerFilterStep(std::move(intervals), config.filter_rate));
+  const auto per_step = static_cast<std::size_t>(samplesPerSpan(std::move(intervals), 1.0 / config.filter_rate));
   for (std::size_t first = 0; first + 1 < traj.size(); first += per_step) {
     const std::size_t k = std::min(traj.size() - 1, first + per_step);
     const Linearization lin = linearizeStep(traj, first, k);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace imucal {
 namespace {
@@ -89,6 +90,24 @@ SampleClockEstimate estimateSampleClock(const std::vector<ImuSample>& raw) {
     // near 1. Halfway between, on the logarithmic scale, decides.
     out.stamps_are_read_times = out.change_ratio > std::sqrt(out.stamp_gap_ratio);
   }
+  return out;
+}
+
+int samplesPerSpan(std::vector<double> intervals, double span) {
+  if (!(span > 0.0)) throw std::invalid_argument("samplesPerSpan: the span must be positive");
+  if (intervals.empty()) return 1;
+  const auto mid = intervals.begin() + static_cast<std::ptrdiff_t>(intervals.size() / 2);
+  std::nth_element(intervals.begin(), mid, intervals.end());
+  const double median = *mid;
+  if (!(median > 0.0)) return 1;
+  return static_cast<int>(std::clamp(std::round(span / median), 1.0, 1e6));
+}
+
+std::vector<double> sampleIntervals(const std::vector<ImuSample>& samples) {
+  std::vector<double> out;
+  if (samples.size() < 2) return out;
+  out.reserve(samples.size() - 1);
+  for (std::size_t k = 1; k < samples.size(); ++k) out.push_back(samples[k].t - samples[k - 1].t);
   return out;
 }
 

@@ -12,8 +12,7 @@
 namespace imucal::daemon {
 
 namespace {
-constexpr double kUs = 1e-6;
-std::int64_t toUtime(double t) { return static_cast<std::int64_t>(std::llround(t * 1e6)); }
+std::int64_t toUtime(double t) { return utimeAfter(t); }
 }  // namespace
 
 double LcmNode::steadySeconds() {
@@ -34,7 +33,7 @@ LcmNode::LcmNode(lcm::LCM& lcm, NodeConfig config, CalibrationService& service, 
 LcmNode::~LcmNode() { unsubscribe(); }
 
 void LcmNode::subscribe() {
-  imu_sub_ = lcm_.subscribe(config_.imu_channel, &LcmNode::onBytes<imucal::imu_sample_t, &LcmNode::onImu>, this);
+  imu_sub_ = lcm_.subscribe(config_.imu_channel, &LcmNode::onImuBytes, this);
   heading_sub_ =
       lcm_.subscribe(config_.heading_channel, &LcmNode::onBytes<imucal::heading_sample_t, &LcmNode::onHeading>, this);
   trigger_sub_ = lcm_.subscribe(config_.trigger_channel,
@@ -53,12 +52,26 @@ void LcmNode::onBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel
     (this->*Handler)(msg);
     return;
   }
+  countDecodeError(channel, rbuf != nullptr ? rbuf->data_size : 0, std::string("not a valid ") + Msg::getTypeName());
+}
+
+void LcmNode::onImuBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+  ImuMessage msg;
+  const std::string why = rbuf != nullptr ? decodeImuMessage(rbuf->data, rbuf->data_size, msg) : "no bytes";
+  if (why.empty()) {
+    onImu(msg);
+    return;
+  }
+  countDecodeError(channel, rbuf != nullptr ? rbuf->data_size : 0, why);
+}
+
+void LcmNode::countDecodeError(const std::string& channel, std::size_t bytes, const std::string& why) {
   // Foreign or corrupt bytes (another program's type on our channel, a forged packet): dropped and counted;
   // logged once per channel so a flood cannot fill the journal.
   ++counters_.decode_errors;
   if (decode_error_logged_.insert(channel).second) {
-    spdlog::warn("{}: a message of {} bytes is not a valid {} (dropped; counted as decode_errors, logged once)",
-                 channel, rbuf != nullptr ? rbuf->data_size : 0, Msg::getTypeName());
+    spdlog::warn("{}: a message of {} bytes is {} (dropped; counted as decode_errors, logged once)", channel, bytes,
+                 why);
   }
 }
 
@@ -78,23 +91,21 @@ void LcmNode::reconfigure(NodeConfig config) {
   else applyQueueCapacity();
 }
 
-void LcmNode::onImu(const imucal::imu_sample_t& msg) {
+void LcmNode::onImu(const ImuMessage& msg) {
   try {
-    ImuSample s;
-    s.t = static_cast<double>(msg.utime) * kUs;
-    s.accel = Vec3(msg.accel[0], msg.accel[1], msg.accel[2]);
-    s.gyro = Vec3(msg.gyro[0], msg.gyro[1], msg.gyro[2]);
-    const bool changed = service_.onImu(msg.sensor_id, s, msg.seq);
-    const auto report_it = service_.reports().find(msg.sensor_id);
-    if (report_it == service_.reports().end()) return;  // not a configured sensor: counted by the service
-    last_imu_wall_[msg.sensor_id] = clock_();
-    if (std::isfinite(s.t) && s.t > latest_) latest_ = s.t;
-    const SensorReport& report = report_it->second;
-    if (changed) {
-      spdlog::info("sensor {}: state {}", msg.sensor_id, static_cast<int>(report.state));
-      publishCalibration(report, toUtime(latest_));
+    for (const StampedImu& stamped : msg.samples) {
+      const ImuSample s = toCore(stamped);
+      const bool changed = service_.onImu(msg.sensor_id, s, stamped.seq);
+      const auto report_it = service_.reports().find(msg.sensor_id);
+      if (report_it == service_.reports().end()) continue;  // not a configured sensor: counted by the service
+      last_imu_wall_[msg.sensor_id] = clock_();
+      if (std::isfinite(s.t) && s.t > latest_) latest_ = s.t;
+      if (changed) {
+        spdlog::info("sensor {}: state {}", msg.sensor_id, static_cast<int>(report_it->second.state));
+        publishCalibration(report_it->second, toUtime(latest_));
+      }
+      publishDue(latest_);
     }
-    publishDue(latest_);
   } catch (const std::exception& e) {
     ++counters_.handler_errors;
     spdlog::error("IMU handler: {}", e.what());
@@ -106,7 +117,7 @@ void LcmNode::onHeading(const imucal::heading_sample_t& msg) {
     last_heading_wall_ = clock_();
     if (heading_stale_logged_) spdlog::info("heading samples again on {}", config_.heading_channel);
     heading_stale_logged_ = false;
-    service_.onHeading({static_cast<double>(msg.utime) * kUs, msg.heading});
+    service_.onHeading(toCore(msg));
   } catch (const std::exception& e) {
     ++counters_.handler_errors;
     spdlog::error("heading handler: {}", e.what());

@@ -9,6 +9,7 @@
 
 #include "imucal/drivers/device_error.hpp"
 #include "imucal/io/errors.hpp"
+#include "imucal/lcm_convert.hpp"
 
 namespace imucal::drivers::node {
 
@@ -35,18 +36,7 @@ void setupLogging(const std::string& program, const std::string& level) {
 }
 
 imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const std::string& sensor_id) {
-  imucal::imu_sample_t m{};
-  m.utime = r.utime;
-  m.seq = seq;
-  m.device_time_us = r.device_time_us;
-  for (int i = 0; i < 3; ++i) {
-    m.accel[i] = r.accel[i];
-    m.gyro[i] = r.gyro[i];
-  }
-  m.temperature_c = r.temperature_c;
-  m.status = r.status | (std::isnan(r.temperature_c) ? status::kTemperatureInvalid : 0);
-  m.sensor_id = sensor_id;
-  return m;
+  return toImuMessage(StampedImu{r.utime, seq, r.device_time_us, r.accel, r.gyro, r.temperature_c, r.status}, sensor_id);
 }
 
 void printSample(const imucal::imu_sample_t& m) {

@@ -2,18 +2,19 @@
 
 #include <spdlog/spdlog.h>
 
-#include "imucal/lcm_decode.hpp"
+#include "imucal/lcm_convert.hpp"
 
 namespace imucal::drivers::node {
 
 void TiltInput::onBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
-  imucal::imu_sample_t m;
-  if (rbuf == nullptr || !imucal::decodeMessage(*rbuf, m)) {
-    if (decode_errors_++ == 0) spdlog::warn("{}: a message that is not an imu_sample_t (dropped; counted, logged once)", channel);
+  ImuMessage m;
+  const std::string why = rbuf != nullptr ? decodeImuMessage(rbuf->data, rbuf->data_size, m) : "no bytes";
+  if (!why.empty()) {
+    if (decode_errors_++ == 0) spdlog::warn("{}: a message that is {} (dropped; counted, logged once)", channel, why);
     return;
   }
   if (!sensor_id_.empty() && m.sensor_id != sensor_id_) return;
-  tracker_.add(m.utime, Vec3(m.accel[0], m.accel[1], m.accel[2]));
+  for (const StampedImu& s : m.samples) tracker_.add(s.utime, s.accel);
 }
 
 }  // namespace imucal::drivers::node

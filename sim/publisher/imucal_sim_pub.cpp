@@ -14,6 +14,7 @@
 #include "imucal/io/config.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/io/sim_formats.hpp"
+#include "imucal/lcm_convert.hpp"
 #include "imucal/lcmtypes.hpp"
 #include "imucal/sim/simulator.hpp"
 
@@ -34,6 +35,8 @@ struct Options {
   std::string report;        // what was published, as JSON, for the test's checker
   double epoch_offset = 0.0;  // s added to the wall clock for data time 0
   std::string record;        // an LCM event log of every message published, stamped when it was sent
+  int batch = 1;             // IMU samples per message: 1 sends imu_sample_t, more send imu_batch_t
+  bool batch_period = false; // batches stamped by first time and period instead of per sample
 };
 
 // Every message goes out on LCM and, with --record, into an event log: a copy of the stream that no
@@ -90,6 +93,20 @@ int run(const Options& o) {
   const double epoch =
       std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count() + o.epoch_offset;
   std::size_t h = 0;
+  // Batches go out when full, as a driver sends what one FIFO read returned; the period stamps assume the
+  // simulator's uniform sampling.
+  if (o.batch_period && config.imu.timing_jitter > 0.0)
+    throw std::runtime_error("--batch-period: the config's IMU samples are jittered (imu.timing_jitter); stamp per sample");
+  std::vector<imucal::StampedImu> pending;
+  const std::int64_t period_ns =
+      o.batch_period ? static_cast<std::int64_t>(std::llround(1e9 / config.imu.rate_hz)) : 0;
+  std::size_t batches = 0;
+  const auto flushBatch = [&] {
+    if (pending.empty()) return;
+    out_lcm.send(o.imu_channel, imucal::toImuBatch(pending, o.sensor_id, period_ns));
+    pending.clear();
+    ++batches;
+  };
   for (std::size_t k = 0; k < out.imu.size(); ++k) {
     const imucal::ImuSample& s = out.imu[k];
     if (o.speed > 0.0) std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s.t / o.speed)));
@@ -102,30 +119,34 @@ int run(const Options& o) {
       out_lcm.send(o.heading_channel, hm);
       ++h;
     }
-    imucal::imu_sample_t m{};
-    m.utime = utimeOf(epoch, s.t);
-    m.seq = static_cast<std::int64_t>(k);
-    m.device_time_us = static_cast<std::int64_t>(std::llround(s.t * 1e6));
-    for (int i = 0; i < 3; ++i) {
-      m.accel[i] = s.accel(i);
-      m.gyro[i] = s.gyro(i);
-    }
-    m.temperature_c = std::nan("");
-    m.status = imucal::imu_sample_t::STATUS_TEMPERATURE_INVALID;
-    m.sensor_id = o.sensor_id;
+    imucal::StampedImu stamped;
+    stamped.utime = utimeOf(epoch, s.t);
+    stamped.seq = static_cast<std::int64_t>(k);
+    stamped.device_time_us = static_cast<std::int64_t>(std::llround(s.t * 1e6));
+    stamped.accel = s.accel;
+    stamped.gyro = s.gyro;
+    const imucal::imu_sample_t m = imucal::toImuMessage(stamped, o.sensor_id);
+    if (next_injection < injections.size() && injections[next_injection].before == k) flushBatch();
     for (; next_injection < injections.size() && injections[next_injection].before == k; ++next_injection) {
       const std::vector<std::uint8_t> bad = imucal::sim::faultBytes(injections[next_injection].kind, m, previous);
       out_lcm.send(o.imu_channel, bad.data(), static_cast<unsigned int>(bad.size()));
     }
-    out_lcm.send(o.imu_channel, m);
+    if (o.batch <= 1) {
+      out_lcm.send(o.imu_channel, m);
+    } else {
+      pending.push_back(stamped);
+      if (static_cast<int>(pending.size()) >= o.batch) flushBatch();
+    }
     previous = m;
   }
+  flushBatch();
   spdlog::info("imucal-sim-pub: published {} IMU and {} heading samples and {} bad messages", out.imu.size(), h,
                injections.size());
   if (out_lcm.failed() > 0) spdlog::warn("imucal-sim-pub: LCM refused {} of them", out_lcm.failed());
   if (!o.report.empty()) {
     imucal::io::writeJsonFile(o.report, {{"imu", out.imu.size()},
                                          {"heading", h},
+                                         {"imu_batches", batches},
                                          {"publish_failures", out_lcm.failed()},
                                          {"sensor_id", o.sensor_id},
                                          {"injected",
@@ -157,6 +178,10 @@ int main(int argc, char** argv) {
   app.add_option("--heading-until", o.heading_until, "Stop publishing heading after this many seconds of data");
   app.add_option("--epoch-offset", o.epoch_offset, "Seconds added to the wall clock for data time 0");
   app.add_option("--record", o.record, "Also write every published message to this LCM event log");
+  app.add_option("--batch", o.batch, "IMU samples per message: 1 publishes imu_sample_t, more imu_batch_t")
+      ->check(CLI::Range(1, static_cast<int>(imucal::imu_batch_t::MAX_COUNT)))
+      ->capture_default_str();
+  app.add_flag("--batch-period", o.batch_period, "Stamp batches by first time and period, not per sample");
   app.add_option("--report", o.report, "Write the counts of what was published here (JSON)");
   CLI11_PARSE(app, argc, argv);
   try {

@@ -11,6 +11,7 @@
 
 #include "imucal/daemon/calibration_store.hpp"
 #include "imucal/io/config.hpp"
+#include "imucal/lcm_convert.hpp"
 #include "imucal/lcmtypes.hpp"
 
 namespace fs = std::filesystem;
@@ -44,6 +45,18 @@ imucal::heading_sample_t headingSample(std::int64_t k) {
   m.heading_sigma = 0.01;
   m.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
   return m;
+}
+
+// count consecutive samples from sample `first`, as one batch (period_ns 0: stamped per sample).
+imucal::imu_batch_t imuBatch(std::int64_t first, std::int64_t count, std::int64_t period_ns) {
+  std::vector<imucal::StampedImu> samples;
+  for (std::int64_t k = first; k < first + count; ++k) {
+    // The samples imuSample(k) carries.
+    imucal::StampedImu s{1'700'000'000'000'000 + k * 10'000, k, k * 10'000, imucal::Vec3(0.0, 0.0, -9.80665),
+                         imucal::Vec3(1e-3, 0.0, 0.0), 25.0, 0};
+    samples.push_back(s);
+  }
+  return imucal::toImuBatch(samples, "imu0", period_ns);
 }
 
 // fuzz_lcm_node's record: channel (0 IMU, 1 heading, 2 trigger), length (2 bytes LE), message.
@@ -101,6 +114,12 @@ void nodeSeeds(const fs::path& dir) {
   }
   appendRecord(stream, 2, encoded(trigger));
   writeFile(dir / "stream.bin", stream);
+  // imu_batch_t on the IMU channel: stamped per sample, then by first time and period.
+  std::vector<std::uint8_t> batches;
+  appendRecord(batches, 0, encoded(imuBatch(0, 8, 0)));
+  appendRecord(batches, 1, encoded(headingSample(1)));
+  appendRecord(batches, 0, encoded(imuBatch(8, 8, 10'000'000)));
+  writeFile(dir / "batches.bin", batches);
 }
 
 void logSeeds(const fs::path& dir) {
@@ -124,6 +143,10 @@ void logSeeds(const fs::path& dir) {
       const auto heading = headingSample(k / 5);
       write("IMUCAL_HEADING", encoded(heading), heading.utime);
     }
+  }
+  for (std::int64_t first = 10; first < 30; first += 10) {
+    const auto batch = imuBatch(first, 10, first == 10 ? 0 : 10'000'000);
+    write("IMUCAL_IMU", encoded(batch), batch.utime);
   }
 }
 

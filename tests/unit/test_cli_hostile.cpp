@@ -176,7 +176,7 @@ TEST_F(CliHostile, LcmLogWithAnUndecodableSampleNamesTheEvent) {
   const std::string log = hostile("cli_lcm_log_strlen0.lcm");
   const CommandRun r = imucal::testing::runImucal("calibrate --lcm-log " + log + " --out " + out());
   EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find(log + ": event 1 on IMUCAL_IMU is not an imu_sample_t"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(log + ": event 1 on IMUCAL_IMU is neither an imu_sample_t nor an imu_batch_t"), std::string::npos) << r.output;
 }
 
 TEST_F(CliHostile, LcmLogWithAnAbsurdTimeStampNamesIt) {

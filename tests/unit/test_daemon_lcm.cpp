@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
+
+#include "imucal/lcm_convert.hpp"
 
 #include "imucal/core/units.hpp"
 #include "imucal/daemon/lcm_node.hpp"
@@ -30,32 +33,49 @@ imucal::imu_sample_t toMessage(const ImuSample& s, std::int64_t seq) {
   return m;
 }
 
+// The daemon's front end on memq:// with 5 deg heading noise, and what it publishes.
+struct MemqDaemon {
+  static ServiceConfig serviceConfig() {
+    ServiceConfig config;
+    config.filter.measurements.heading_sigma = 5.0 * units::deg;
+    return config;
+  }
+  MemqDaemon() {
+    lcm.subscribe("IMUCAL_CALIBRATION", &Collector::onCalibration, &collector);
+    lcm.subscribe("IMUCAL_STATUS", &Collector::onStatus, &collector);
+  }
+  lcm::LCM lcm{"memq://"};
+  CalibrationService service{serviceConfig()};
+  LcmNode node{lcm, NodeConfig{}, service};
+  Collector collector;
+};
+
+// Publishes the heading samples from index h up to time t (data time 0 is 1.7e9 s after the epoch).
+void publishHeadingsUpTo(lcm::LCM& lcm, const sim::SimOutput& out, double t, std::size_t& h) {
+  for (; h < out.heading.size() && out.heading[h].t <= t; ++h) {
+    imucal::heading_sample_t hm{};
+    hm.utime = utimeAfter(out.heading[h].t, 1'700'000'000'000'000);
+    hm.heading = out.heading[h].heading;
+    hm.heading_sigma = 5.0 * units::deg;
+    hm.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
+    lcm.publish("IMUCAL_HEADING", &hm);
+  }
+}
+
 TEST(DaemonLcm, MemqSessionPublishesTheCalibration) {
   sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 51);
   sc.motion.segments.back().duration = 12.0;
   const sim::SimOutput out = sim::simulate(sc, 51);
 
-  lcm::LCM lcm("memq://");
-  ASSERT_TRUE(lcm.good());
-  ServiceConfig config;
-  config.filter.measurements.heading_sigma = 5.0 * units::deg;
-  CalibrationService service(config);
-  LcmNode node(lcm, NodeConfig{}, service);
-  Collector collector;
-  lcm.subscribe("IMUCAL_CALIBRATION", &Collector::onCalibration, &collector);
-  lcm.subscribe("IMUCAL_STATUS", &Collector::onStatus, &collector);
+  MemqDaemon d;
+  ASSERT_TRUE(d.lcm.good());
+  lcm::LCM& lcm = d.lcm;
+  LcmNode& node = d.node;
+  Collector& collector = d.collector;
 
   std::size_t h = 0;
   for (std::size_t k = 0; k < out.imu.size(); ++k) {
-    while (h < out.heading.size() && out.heading[h].t <= out.imu[k].t) {
-      imucal::heading_sample_t hm{};
-      hm.utime = static_cast<std::int64_t>(std::llround((1.7e9 + out.heading[h].t) * 1e6));
-      hm.heading = out.heading[h].heading;
-      hm.heading_sigma = 5.0 * units::deg;
-      hm.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
-      lcm.publish("IMUCAL_HEADING", &hm);
-      ++h;
-    }
+    publishHeadingsUpTo(lcm, out, out.imu[k].t, h);
     imucal::imu_sample_t m = toMessage(out.imu[k], static_cast<std::int64_t>(k));
     if (k == 300) {
       imucal::imu_sample_t bad = m;
@@ -82,6 +102,83 @@ TEST(DaemonLcm, MemqSessionPublishesTheCalibration) {
   EXPECT_EQ(collector.statuses.back().rejected_nan, 1);
   EXPECT_NEAR(collector.statuses.back().imu_rate_hz, 100.0, 2.0);
   EXPECT_EQ(node.handlerErrors(), 0u);
+}
+
+// The same session sent as imu_batch_t messages of 16 samples (per-sample stamps, then first time and
+// period): the daemon sees the same samples, so it publishes the same calibration as from single messages.
+struct BatchedRun {
+  std::vector<imucal::calibration_t> calibrations;
+  std::uint64_t decode_errors = 0;
+};
+
+BatchedRun runSession(const sim::SimOutput& out, int batch, bool period_stamps, bool corrupt_batch = false) {
+  MemqDaemon d;
+  EXPECT_TRUE(d.lcm.good());
+  lcm::LCM& lcm = d.lcm;
+  std::vector<StampedImu> pending;
+  const auto flush = [&] {
+    if (pending.empty()) return;
+    if (batch == 1) {
+      const imucal::imu_sample_t m = toImuMessage(pending.front(), "imu0");
+      lcm.publish("IMUCAL_IMU", &m);
+    } else {
+      imucal::imu_batch_t b = toImuBatch(pending, "imu0", period_stamps ? 10'000'000 : 0);
+      lcm.publish("IMUCAL_IMU", &b);
+    }
+    pending.clear();
+    while (lcm.handleTimeout(0) > 0) {
+    }
+  };
+  std::size_t h = 0;
+  for (std::size_t k = 0; k < out.imu.size(); ++k) {
+    publishHeadingsUpTo(lcm, out, out.imu[k].t, h);
+    StampedImu s;
+    // Whole 10 ms steps from a whole second: period stamps and per-sample stamps are the same times.
+    s.utime = 1'700'000'000'000'000 + static_cast<std::int64_t>(k) * 10'000;
+    s.seq = static_cast<std::int64_t>(k);
+    s.accel = out.imu[k].accel;
+    s.gyro = out.imu[k].gyro;
+    s.temperature_c = 25.0;
+    pending.push_back(s);
+    if (static_cast<int>(pending.size()) >= batch) flush();
+    if (corrupt_batch && k == 500) {
+      imucal::imu_batch_t bad{};  // a well-formed message that says it carries no samples
+      bad.sensor_id = "imu0";
+      lcm.publish("IMUCAL_IMU", &bad);
+    }
+  }
+  flush();
+  BatchedRun r;
+  r.calibrations = d.collector.calibrations;
+  r.decode_errors = d.node.counters().decode_errors;
+  return r;
+}
+
+TEST(DaemonLcm, BatchedSamplesCalibrateAsSingleOnes) {
+  sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 52);
+  sc.motion.segments.back().duration = 12.0;
+  const sim::SimOutput out = sim::simulate(sc, 52);
+  const BatchedRun single = runSession(out, 1, false);
+  ASSERT_FALSE(single.calibrations.empty());
+  const imucal::calibration_t& a = single.calibrations.back();
+  ASSERT_EQ(a.state, imucal::calibration_t::STATE_CONVERGED) << a.model;
+  for (int i = 0; i < 3; ++i)
+    EXPECT_LT(std::abs(a.gyro_bias[i] - out.applied_errors.gyro.bias(i)), 4.0 * a.gyro_bias_sigma[i]) << i;
+  for (bool period : {false, true}) {
+    SCOPED_TRACE(period ? "period stamps" : "per-sample stamps");
+    const BatchedRun batched = runSession(out, 16, period, true);
+    ASSERT_FALSE(batched.calibrations.empty());
+    const imucal::calibration_t& b = batched.calibrations.back();
+    EXPECT_EQ(b.state, a.state);
+    EXPECT_EQ(b.calibrated_utime, a.calibrated_utime);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(b.accel_bias[i], a.accel_bias[i], 1e-12) << i;
+      EXPECT_NEAR(b.gyro_bias[i], a.gyro_bias[i], 1e-15) << i;
+      EXPECT_NEAR(b.gyro_bias_sigma[i], a.gyro_bias_sigma[i], 1e-15) << i;
+    }
+    // The batch that says it has no samples is dropped and counted, not fatal.
+    EXPECT_EQ(batched.decode_errors, 1u);
+  }
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // The filter's integrated increments against motions whose rotation and velocity change are known in
 // closed form (derived by hand, not with the code under test): classical coning, classical sculling and a
-// steady turn under constant specific force; and how many samples a filter step spans.
+// steady turn under constant specific force.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -116,21 +116,6 @@ TEST(ImuIncrement, RefusesTimeNotIncreasing) {
   ImuIncrement inc;
   EXPECT_THROW(inc.add(sample(1.0, Vec3::Zero(), Vec3::Zero()), sample(1.0, Vec3::Zero(), Vec3::Zero())),
                std::invalid_argument);
-}
-
-TEST(SamplesPerFilterStep, FilterPeriodOverTheMedianInterval) {
-  EXPECT_EQ(samplesPerFilterStep(std::vector<double>(50, 1e-3), 100.0), 10);
-  EXPECT_EQ(samplesPerFilterStep(std::vector<double>(50, 1.0 / 8000.0), 100.0), 80);
-  EXPECT_EQ(samplesPerFilterStep(std::vector<double>(50, 1.0 / 8000.0), 200.0), 40);
-  // About 100 Hz (a real MPU6050 logs 95-105 Hz) or slower: one sample per step.
-  EXPECT_EQ(samplesPerFilterStep(std::vector<double>(50, 0.0105), 100.0), 1);
-  EXPECT_EQ(samplesPerFilterStep(std::vector<double>(50, 0.02), 100.0), 1);
-  // Dropped samples (double intervals) in a tenth of the recording do not change the step.
-  std::vector<double> gappy(100, 1e-3);
-  for (int i = 0; i < 10; ++i) gappy[static_cast<std::size_t>(i * 10)] = 2e-3;
-  EXPECT_EQ(samplesPerFilterStep(gappy, 100.0), 10);
-  EXPECT_EQ(samplesPerFilterStep({}, 100.0), 1);
-  EXPECT_THROW(samplesPerFilterStep({1e-3}, 0.0), std::invalid_argument);
 }
 
 }  // namespace

@@ -68,5 +68,27 @@ TEST(SampleClock, AStillRecordingCannotTellAndKeepsItsStamps) {
   EXPECT_FALSE(estimateSampleClock(std::vector<ImuSample>(50)).valid);
 }
 
+TEST(SamplesPerSpan, SpanOverTheMedianInterval) {
+  EXPECT_EQ(samplesPerSpan(std::vector<double>(50, 1e-3), 0.01), 10);        // 1 kHz in 100 Hz steps
+  EXPECT_EQ(samplesPerSpan(std::vector<double>(50, 1.0 / 8000.0), 0.01), 80);
+  EXPECT_EQ(samplesPerSpan(std::vector<double>(50, 1.0 / 8000.0), 0.005), 40);
+  // About 100 Hz (a real MPU6050 logs 95-105 Hz) or slower: one sample.
+  EXPECT_EQ(samplesPerSpan(std::vector<double>(50, 0.0105), 0.01), 1);
+  EXPECT_EQ(samplesPerSpan(std::vector<double>(50, 0.02), 0.01), 1);
+  // Stamps jittered by a microsecond around 10 ms: 0.1 s is 10 samples, whichever way each one rounds.
+  std::vector<double> jittered(60);
+  for (std::size_t k = 0; k < jittered.size(); ++k) jittered[k] = 0.01 + (k % 2 == 0 ? 1e-6 : -1e-6);
+  EXPECT_EQ(samplesPerSpan(jittered, 0.1), 10);
+  // Dropped samples (double intervals) in a tenth of the recording do not change the count.
+  std::vector<double> gappy(100, 1e-3);
+  for (int k = 0; k < 10; ++k) gappy[static_cast<std::size_t>(k * 10)] = 2e-3;
+  EXPECT_EQ(samplesPerSpan(gappy, 0.01), 10);
+  EXPECT_EQ(samplesPerSpan({}, 0.01), 1);
+  EXPECT_THROW(samplesPerSpan({1e-3}, 0.0), std::invalid_argument);
+  const std::vector<ImuSample> three{ImuSample{0.0, Vec3::Zero(), Vec3::Zero()}, ImuSample{0.5, Vec3::Zero(), Vec3::Zero()},
+                                     ImuSample{0.75, Vec3::Zero(), Vec3::Zero()}};
+  EXPECT_EQ(sampleIntervals(three), (std::vector<double>{0.5, 0.25}));
+}
+
 }  // namespace
 }  // namespace imucal

@@ -14,6 +14,7 @@
 #include "imucal/calibration_trigger_t.hpp"  // IWYU pragma: export
 #include "imucal/daemon_status_t.hpp"    // IWYU pragma: export
 #include "imucal/heading_sample_t.hpp"   // IWYU pragma: export
+#include "imucal/imu_batch_t.hpp"        // IWYU pragma: export
 #include "imucal/imu_sample_t.hpp"       // IWYU pragma: export
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop

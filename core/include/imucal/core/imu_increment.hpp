@@ -4,8 +4,6 @@
 // sample by sample and resolving every velocity piece in the interval's start frame carries the coning and
 // sculling terms to all orders of the sample-rate expansion, so the filter rate can be far below the sensor's
 // (PX4 EKF2 does the same with first-order coning and sculling corrections).
-#include <vector>
-
 #include "imucal/core/types.hpp"
 
 namespace imucal {
@@ -34,10 +32,5 @@ class ImuIncrement {
   Vec3 force_sum_ = Vec3::Zero();
   Vec3 rate_sum_ = Vec3::Zero();
 };
-
-// How many raw sample steps one filter step spans: the filter period over the median sample interval,
-// rounded, at least one (a sensor slower than the filter rate steps it once per sample). The median keeps a
-// few dropped or doubled samples from changing the filter rate.
-int samplesPerFilterStep(std::vector<double> intervals, double filter_rate);
 
 }  // namespace imucal

@@ -34,4 +34,11 @@ struct SampleClockEstimate {
 // raw: the samples with their stamps as logged.
 SampleClockEstimate estimateSampleClock(const std::vector<ImuSample>& raw);
 
+// How many sample steps make `span` seconds: span over the median of the intervals, rounded, at least one.
+// Grouping by count rather than by stamp keeps a microsecond of stamp jitter from moving a sample between
+// groups (a filter step, a noise block), and the median keeps a few dropped or doubled samples from
+// changing the count.
+int samplesPerSpan(std::vector<double> intervals, double span);
+std::vector<double> sampleIntervals(const std::vector<ImuSample>& samples);
+
 }  // namespace imucal

@@ -12,6 +12,7 @@
 
 #include "imucal/daemon/calibration_service.hpp"
 #include "imucal/daemon/node_config.hpp"
+#include "imucal/lcm_convert.hpp"
 #include "imucal/lcmtypes.hpp"
 
 namespace imucal::daemon {
@@ -63,7 +64,10 @@ class LcmNode {
   // decoding runs inside LCM's C dispatch, where nothing can catch what the generated decoder throws.
   template <class Msg, void (LcmNode::*Handler)(const Msg&)>
   void onBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void onImu(const imucal::imu_sample_t& msg);
+  // The IMU channel carries imu_sample_t or imu_batch_t (see lcm_convert.hpp).
+  void onImuBytes(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void onImu(const ImuMessage& msg);
+  void countDecodeError(const std::string& channel, std::size_t bytes, const std::string& why);
   void onHeading(const imucal::heading_sample_t& msg);
   void onTrigger(const imucal::calibration_trigger_t& msg);
   void publishStatuses(double data_now, std::int64_t utime);
