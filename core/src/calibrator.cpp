@@ -77,7 +77,7 @@ struct PassOutput {
 };
 
 PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
-                   const std::vector<bool>& still, const FilterConfig& config, const VecX& params0,
+                   const std::vector<bool>& still, std::size_t per_step, const FilterConfig& config, const VecX& params0,
                    const VecX& prior_mean, bool feedback, bool keep_innovations, std::size_t max_history_epochs) {
   const auto& m = config.measurements;
   Eskf filter(config);
@@ -101,7 +101,6 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   IncrementConsistencyCheck increments(layout.paramCount());
   filter.setIncrementCheck(&increments);
   // The filter steps once per `per_step` samples (see imu_increment.hpp); the last step takes what is left.
-  const auto per_step = static_cast<std::size_t>(samplesPerSpan(sampleIntervals(imu), 1.0 / config.filter_rate));
   const std::size_t steps = (imu.size() - 1 + per_step - 1) / per_step;
   const std::size_t stride =
       max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (steps + max_history_epochs - 1) / max_history_epochs);
@@ -414,6 +413,8 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   for (auto& h : heading) h.heading = heading_errors.correct(h.heading);
   if (config.passes < 1) throw std::invalid_argument("calibrate: passes must be at least 1");
   if (!(config.filter_rate > 0.0)) throw std::invalid_argument("calibrate: the filter rate must be positive");
+  // Every pass steps the same way: the count is the recording's, not the pass's.
+  const auto per_step = static_cast<std::size_t>(samplesPerSpan(sampleIntervals(imu), 1.0 / config.filter_rate));
   const StateLayout layout = StateLayout::make(config.model, config.measurements.centre_motion.enabled);
 
   result.layout = layout;
@@ -433,7 +434,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
     // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
     // about the dead-reckoned trajectory of the previous pass's parameters.
     const bool feedback = i == 0 || !config.open_loop_refinement;
-    pass = runPass(imu, heading, still, config, params, i == 0 ? VecX() : prior_mean, feedback,
+    pass = runPass(imu, heading, still, per_step, config, params, i == 0 ? VecX() : prior_mean, feedback,
                    options.keep_innovations, options.max_history_epochs);
     const VecX sigma = paramSigmas(pass.P, layout);
     previous_step = step;

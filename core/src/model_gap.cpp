@@ -124,8 +124,8 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
   const StateLayout& layout = result.layout;
   // Each epoch's attitude goes with that epoch's parameter estimates (the filter's own pairing; the final
   // estimates with early attitudes would mix tilt and horizontal bias from different times).
-  const auto errorsAt = [&](std::size_t k, TriadErrors& accel, TriadErrors& gyro) {
-    const CalibrationParams p = toCalibrationParams(layout, history[epochOf(k)].params, model.filter.model);
+  const auto errorsAt = [&](std::size_t j, TriadErrors& accel, TriadErrors& gyro) {
+    const CalibrationParams p = toCalibrationParams(layout, history[j].params, model.filter.model);
     accel = p.imu.accel;
     gyro = p.imu.gyro;
   };
@@ -137,8 +137,7 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
   Accumulator accel_acc[3];
   ResidualSeries accel_series[3] = {{"accel_x", {}, {}}, {"accel_y", {}, {}}, {"accel_z", {}, {}}};
   // Between the epochs of a step the attitude is interpolated in time.
-  const auto quatAt = [&](std::size_t k) {
-    const std::size_t j = epochOf(k);
+  const auto quatAt = [&](std::size_t k, std::size_t j) {
     const auto quatOf = [&](std::size_t i) {
       const Vec3& e = history[i].euler;
       return eulerToQuat(e.x(), e.y(), e.z());
@@ -157,18 +156,19 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
     Vec3 measured = Vec3::Zero(), simulated = Vec3::Zero();
     bool all_still = true;
     for (std::size_t k = start; k < end; ++k) {
+      const std::size_t j = epochOf(k);  // the filter step sample k belongs to
       TriadErrors accel, gyro;
-      errorsAt(k, accel, gyro);
+      errorsAt(j, accel, gyro);
       const double dt = imu[k + 1].t - imu[k].t;
       const Vec3 w_a = gyro.remove(imu[k].gyro), w_b = gyro.remove(imu[k + 1].gyro);
       const Vec3 w = 0.5 * (w_a + w_b);
-      const Mat3 c = quatAt(k).toRotationMatrix();
+      const Mat3 c = quatAt(k, j).toRotationMatrix();
       const Vec3 w_nb = w - c.transpose() * w_ie;
       const Vec3 alpha = (w_b - w_a) / dt;
       const Vec3 f_true = leverArmAcceleration(w_nb, alpha, r) - c.transpose() * g_n;
       simulated += dt * accel.apply(f_true);
       measured += dt * 0.5 * (imu[k].accel + imu[k + 1].accel);
-      all_still = all_still && history[epochOf(k)].still;
+      all_still = all_still && history[j].still;
     }
     const Vec3 accel_residual = (measured - simulated) / span;
     const double t_mid = 0.5 * (imu[start].t + imu[end].t);

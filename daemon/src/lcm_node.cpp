@@ -11,9 +11,6 @@
 
 namespace imucal::daemon {
 
-namespace {
-std::int64_t toUtime(double t) { return utimeAfter(t); }
-}  // namespace
 
 double LcmNode::steadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -102,7 +99,7 @@ void LcmNode::onImu(const ImuMessage& msg) {
       if (std::isfinite(s.t) && s.t > latest_) latest_ = s.t;
       if (changed) {
         spdlog::info("sensor {}: state {}", msg.sensor_id, static_cast<int>(report_it->second.state));
-        publishCalibration(report_it->second, toUtime(latest_));
+        publishCalibration(report_it->second, utimeAfter(latest_));
       }
       publishDue(latest_);
     }
@@ -150,7 +147,7 @@ void LcmNode::collectFinished() {
         spdlog::info("sensor {}: state {}{}", id, static_cast<int>(report.state),
                      report.failure.empty() ? "" : " (" + report.failure + ")");
       }
-      publishCalibration(report, toUtime(latest_));
+      publishCalibration(report, utimeAfter(latest_));
     }
   } catch (const std::exception& e) {
     ++counters_.handler_errors;
@@ -190,7 +187,7 @@ imucal::calibration_t LcmNode::toMessage(const SensorReport& r, std::int64_t uti
     return m;
   }
   const StoredCalibration& c = *r.calibration;
-  m.calibrated_utime = toUtime(c.utime_s);
+  m.calibrated_utime = utimeAfter(c.utime_s);
   m.model = c.model;
   m.num_params = static_cast<int32_t>(c.names.size());
   m.param_names = c.names;
@@ -284,11 +281,11 @@ void LcmNode::publishStatus(const SensorReport& r, double data_now, std::int64_t
 void LcmNode::publishDue(double now_s) {
   if (config_.calibration_rate_hz > 0.0 && now_s - last_calibration_ >= 1.0 / config_.calibration_rate_hz) {
     last_calibration_ = now_s;
-    for (const auto& [id, report] : service_.reports()) publishCalibration(report, toUtime(now_s));
+    for (const auto& [id, report] : service_.reports()) publishCalibration(report, utimeAfter(now_s));
   }
   if (config_.status_rate_hz > 0.0 && now_s - last_status_ >= 1.0 / config_.status_rate_hz) {
     last_status_ = now_s;
-    publishStatuses(now_s, toUtime(now_s));
+    publishStatuses(now_s, utimeAfter(now_s));
   }
 }
 

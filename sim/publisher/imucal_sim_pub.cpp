@@ -75,7 +75,6 @@ class Outlet {
   std::size_t failed_ = 0;
 };
 
-std::int64_t utimeOf(double epoch_s, double t) { return static_cast<std::int64_t>(std::llround((epoch_s + t) * 1e6)); }
 
 int run(const Options& o) {
   const imucal::sim::SimConfig config = imucal::io::loadSimConfig(o.config);
@@ -112,7 +111,7 @@ int run(const Options& o) {
     if (o.speed > 0.0) std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s.t / o.speed)));
     while (h < out.heading.size() && out.heading[h].t <= s.t && (o.heading_until < 0.0 || out.heading[h].t <= o.heading_until)) {
       imucal::heading_sample_t hm{};
-      hm.utime = utimeOf(epoch, out.heading[h].t);
+      hm.utime = imucal::utimeAfter(epoch + out.heading[h].t);
       hm.heading = out.heading[h].heading;
       hm.heading_sigma = config.heading.noise;
       hm.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
@@ -120,7 +119,7 @@ int run(const Options& o) {
       ++h;
     }
     imucal::StampedImu stamped;
-    stamped.utime = utimeOf(epoch, s.t);
+    stamped.utime = imucal::utimeAfter(epoch + s.t);
     stamped.seq = static_cast<std::int64_t>(k);
     stamped.device_time_us = static_cast<std::int64_t>(std::llround(s.t * 1e6));
     stamped.accel = s.accel;
