@@ -17,5 +17,6 @@ void addCalibrateCommand(CLI::App& app);
 void addMonteCarloCommand(CLI::App& app);
 void addBoundCommand(CLI::App& app);
 void addDiagnoseCommand(CLI::App& app);
+void addWatchCommand(CLI::App& app);
 
 }  // namespace imucal::cli

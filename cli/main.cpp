@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   imucal::cli::addMonteCarloCommand(app);
   imucal::cli::addBoundCommand(app);
   imucal::cli::addDiagnoseCommand(app);
+  imucal::cli::addWatchCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

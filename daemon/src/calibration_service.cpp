@@ -106,6 +106,12 @@ bool CalibrationService::onHeading(const HeadingSample& h) {
   return false;
 }
 
+std::optional<SessionProgress> CalibrationService::progress(const std::string& id) const {
+  const auto it = sensors_.find(id);
+  if (it == sensors_.end()) return std::nullopt;
+  return it->second.detector.progress();
+}
+
 bool CalibrationService::onImu(const std::string& id, const ImuSample& s, std::int64_t sequence) {
   if (!allowed(id)) {
     ++unknown_sensor_rejected_;

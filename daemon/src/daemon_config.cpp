@@ -28,12 +28,13 @@ void readChannels(YamlSection s, NodeConfig& n) {
   n.trigger_channel = channel(s, "trigger", n.trigger_channel);
   n.calibration_channel = channel(s, "calibration", n.calibration_channel);
   n.status_channel = channel(s, "status", n.status_channel);
+  n.progress_channel = channel(s, "progress", n.progress_channel);
   // Inputs and outputs on one channel would feed the daemon its own messages.
   const std::string names[] = {n.imu_channel, n.heading_channel, n.trigger_channel, n.calibration_channel,
-                               n.status_channel};
-  const char* keys[] = {"imu", "heading", "trigger", "calibration", "status"};
-  for (int i = 0; i < 5; ++i)
-    for (int j = i + 1; j < 5; ++j)
+                               n.status_channel, n.progress_channel};
+  const char* keys[] = {"imu", "heading", "trigger", "calibration", "status", "progress"};
+  for (int i = 0; i < 6; ++i)
+    for (int j = i + 1; j < 6; ++j)
       if (names[i] == names[j]) s.fail(keys[j], "channel '" + names[j] + "' is also the " + keys[i] + " channel");
   s.finish();
 }
@@ -41,6 +42,7 @@ void readChannels(YamlSection s, NodeConfig& n) {
 void readPublish(YamlSection s, NodeConfig& n) {
   n.calibration_rate_hz = s.number("calibration_rate_hz", n.calibration_rate_hz, Range::between(0.0, 1000.0));
   n.status_rate_hz = s.number("status_rate_hz", n.status_rate_hz, Range::between(0.01, 1000.0));
+  n.progress_rate_hz = s.number("progress_rate_hz", n.progress_rate_hz, Range::between(0.0, 100.0));
   s.finish();
 }
 

@@ -287,6 +287,32 @@ void LcmNode::publishDue(double now_s) {
     last_status_ = now_s;
     publishStatuses(now_s, utimeAfter(now_s));
   }
+  if (config_.progress_rate_hz > 0.0 && now_s - last_progress_ >= 1.0 / config_.progress_rate_hz) {
+    last_progress_ = now_s;
+    publishProgress(utimeAfter(now_s));
+  }
+}
+
+void LcmNode::publishProgress(std::int64_t utime) {
+  static_assert(static_cast<int>(SessionPhase::Waiting) == imucal::session_progress_t::PHASE_WAITING);
+  static_assert(static_cast<int>(SessionPhase::LeadStill) == imucal::session_progress_t::PHASE_HOLD_STILL);
+  static_assert(static_cast<int>(SessionPhase::Turning) == imucal::session_progress_t::PHASE_TURNING);
+  static_assert(static_cast<int>(SessionPhase::TrailStill) == imucal::session_progress_t::PHASE_HOLD_STILL_AGAIN);
+  for (const auto& [id, report] : service_.reports()) {
+    const std::optional<SessionProgress> p = service_.progress(id);
+    if (!p) continue;
+    imucal::session_progress_t m{};
+    m.utime = utime;
+    m.sensor_id = id;
+    m.phase = static_cast<std::int8_t>(p->phase);
+    m.phase_time_s = p->phase_time;
+    m.turned_deg = p->turned * 180.0 / 3.14159265358979323846;
+    for (int i = 0; i < 3; ++i) m.turn_axis[i] = p->turn_axis(i);
+    m.hint = progressHint(*p, service_.sessionConfig());
+    m.last_rejection = p->last_rejection;
+    m.rejected = static_cast<std::int32_t>(p->rejected);
+    lcm_.publish(config_.progress_channel, &m);
+  }
 }
 
 }  // namespace imucal::daemon

@@ -1,6 +1,8 @@
 #include "imucal/daemon/session_detector.hpp"
 
 #include <cmath>
+#include <sstream>
+#include <utility>
 
 namespace imucal::daemon {
 
@@ -12,6 +14,56 @@ void SessionDetector::reset() {
   still_ = false;
   buffer_.clear();
   turned_ = 0.0;
+}
+
+namespace {
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+}  // namespace
+
+void SessionDetector::reject(std::string why) {
+  last_rejection_ = std::move(why);
+  ++rejected_;
+}
+
+SessionProgress SessionDetector::progress() const {
+  SessionProgress p;
+  p.phase = phase_;
+  p.phase_time = phase_ == SessionPhase::Waiting ? 0.0 : last_t_ - phase_start_;
+  p.turned = turned_;
+  if (turn_vector_.norm() > 0.0) p.turn_axis = turn_vector_.normalized();
+  p.last_rejection = last_rejection_;
+  p.rejected = rejected_;
+  return p;
+}
+
+std::string progressHint(const SessionProgress& p, const SessionDetectorConfig& c) {
+  std::ostringstream out;
+  out.precision(1);
+  out << std::fixed;
+  switch (p.phase) {
+    case SessionPhase::Waiting:
+      out << "hold the device still";
+      break;
+    case SessionPhase::LeadStill:
+      if (p.phase_time < c.min_still) {
+        out << "hold still: " << p.phase_time << " of " << c.min_still << " s";
+      } else {
+        out << "turn it once about the vertical, at least " << std::lround(c.min_turn / kDeg) << " deg within "
+            << c.max_turn_time << " s";
+      }
+      break;
+    case SessionPhase::Turning:
+      if (p.turned < c.min_turn) {
+        out << "keep turning: " << std::lround(p.turned / kDeg) << " of " << std::lround(c.min_turn / kDeg) << " deg";
+      } else {
+        out << "stop and hold still: turned " << std::lround(p.turned / kDeg) << " deg";
+      }
+      break;
+    case SessionPhase::TrailStill:
+      out << "hold still again: " << p.phase_time << " of " << c.min_still << " s";
+      break;
+  }
+  return out.str();
 }
 
 void SessionDetector::dropBefore(double t) {
@@ -36,6 +88,8 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
   }
   const bool still = still_;
   buffer_.push_back(s);
+  last_t_ = s.t;
+  const SessionPhase before = phase_;
 
   switch (phase_) {
     case SessionPhase::Waiting:
@@ -57,18 +111,32 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
         phase_ = SessionPhase::Turning;
         turn_start_ = s.t;
         turned_ = 0.0;
+        turn_vector_.setZero();
       } else {
+        std::ostringstream why;
+        why.precision(2);
+        why << std::fixed << "not still long enough before the turn: " << s.t - still_since_ << " s, need "
+            << config_.min_still << " s";
+        reject(why.str());
         phase_ = SessionPhase::Waiting;
         buffer_.clear();
       }
       break;
     case SessionPhase::Turning:
-      if (buffer_.size() >= 2) turned_ += s.gyro.norm() * (s.t - buffer_[buffer_.size() - 2].t);
+      if (buffer_.size() >= 2) {
+        const double dt = s.t - buffer_[buffer_.size() - 2].t;
+        turned_ += s.gyro.norm() * dt;
+        turn_vector_ += s.gyro * dt;
+      }
       if (still) {
         phase_ = SessionPhase::TrailStill;
         still_since_ = s.t;
       } else if (s.t - turn_start_ > config_.max_turn_time) {
+        std::ostringstream why;
+        why << "the motion went on for more than " << config_.max_turn_time << " s without a still pause";
+        const std::string reason = why.str();
         reset();
+        reject(reason);
       }
       break;
     case SessionPhase::TrailStill:
@@ -77,8 +145,12 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
         phase_ = SessionPhase::Turning;
       } else if (s.t - still_since_ >= config_.min_still) {
         if (turned_ < config_.min_turn) {
+          std::ostringstream why;
+          why << "turn was " << std::lround(turned_ / kDeg) << " deg, need " << std::lround(config_.min_turn / kDeg);
+          reject(why.str());
           // Not a calibration turn: this still run can lead the next session.
           phase_ = SessionPhase::LeadStill;
+          phase_start_ = still_since_;
           dropBefore(still_since_ - config_.still.window);
           turned_ = 0.0;
           return std::nullopt;
@@ -86,12 +158,15 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
         Session session{std::vector<ImuSample>(buffer_.begin(), buffer_.end()), turned_};
         // The trailing still run goes on and may lead the next session.
         phase_ = SessionPhase::LeadStill;
+        phase_start_ = still_since_;
         dropBefore(still_since_ - config_.still.window);
         turned_ = 0.0;
         return session;
       }
       break;
   }
+  // A pause inside the turn does not restart its clock.
+  if (phase_ != before) phase_start_ = phase_ == SessionPhase::Turning ? turn_start_ : s.t;
   return std::nullopt;
 }
 

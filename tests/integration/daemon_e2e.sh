@@ -17,11 +17,19 @@ mkdir -p "$tmp/state"
 daemon=$!; pids+=("$daemon")
 "$build/tests/imucal-cal-check" --lcm-url "$url" --truth "$tmp/truth.json" --timeout 120 --save "$tmp/live.json" &
 check=$!; pids+=("$check")
+# The live guidance over the first 20 s of data (5 Hz): the still start, then the turn.
+"$build/cli/imucal" watch --lcm-url "$url" --count 100 --timeout 60 > "$tmp/watch.txt" 2>&1 &
+watch=$!; pids+=("$watch")
 "$build/sim/imucal-sim-pub" --config "$src/configs/paper-sim.yaml" --seed 5 --lcm-url "$url" --speed "$speed" --report "$tmp/published.json" \
   --truth "$tmp/truth.json" --start-delay 2 --record "$tmp/input.lcmlog"
 rc=0; wait "$check" || rc=$?
 if [ "$rc" -ne 0 ]; then echo "live calibration check failed ($rc)"; cat "$tmp/daemon.log"; exit 1; fi
 test -s "$tmp/state/calibration-imu0.json" || { echo "no persisted calibration"; exit 1; }
+rc=0; wait "$watch" || rc=$?
+for expected in '^imu0 \| hold still: ' '^imu0 \| turn it once about the vertical' '^imu0 \| keep turning: [0-9]+ of 300 deg \| turned [0-9]+ deg about [+-]z$'; do
+  grep -Eq "$expected" "$tmp/watch.txt" || { echo "imucal watch (rc $rc) never showed /$expected/:"; cat "$tmp/watch.txt"; exit 1; }
+done
+echo "imucal watch: $(wc -l < "$tmp/watch.txt") lines, e.g. '$(grep -m1 'keep turning' "$tmp/watch.txt")'"
 
 echo "== kill -9 of the daemon, restart: the persisted calibration comes back at once"
 kill -9 "$daemon"; wait "$daemon" 2>/dev/null || true

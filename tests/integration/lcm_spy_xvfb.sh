@@ -25,18 +25,18 @@ window="$(DISPLAY="$display" xwininfo -root -tree | awk '/LCM Spy/ {print $1; ex
 [ -n "$window" ] || { echo "FAILED: no lcm-spy window"; cat "$tmp/spy.log"; exit 1; }
 DISPLAY="$display" import -window "$window" "$png"
 echo "screenshot: $png"
-# OCR of the Channel and Type columns below the header (their share of Spy's default window), upscaled
-# (the table font is small) and thresholded so the grid lines vanish and only the text stays.
+# OCR of the Channel and Type columns of the six channel rows below the header (their share of Spy's
+# default window), upscaled (the table font is small) and thresholded so the grid lines vanish.
 read -r w h < <(identify -format '%w %h\n' "$png")
-crop="$((w * 41 / 100))x$((h * 145 / 1000))+0+$((h * 3 / 100))"
+crop="$((w * 41 / 100))x$((h * 19 / 100))+0+$((h * 3 / 100))"
 convert "$png" -crop "$crop" +repage -colorspace Gray -resize 400% -threshold 55% "$tmp/ocr.png"
 tesseract "$tmp/ocr.png" "$tmp/ocr" --psm 4 > /dev/null 2>&1
 # OCR drops underscores and spaces now and then: compare letters and digits only, lower case, and find
 # each channel's row (by the end of its name) with its type's name on it.
 tr -cd '[:alnum:]\n' < "$tmp/ocr.txt" | tr '[:upper:]' '[:lower:]' > "$tmp/ocr.norm"
 ok=0; bad=0
-for pair in calibration:calibration_t heading:heading_sample_t imu:imu_sample_t status:daemon_status_t \
-            trigger:calibration_trigger_t; do
+for pair in calibration:calibration_t heading:heading_sample_t imu:imu_sample_t progress:session_progress_t \
+            status:daemon_status_t trigger:calibration_trigger_t; do
   channel="${pair%%:*}"; type="${pair#*:}"; want="$(echo "$type" | tr -d '_')"
   if grep -E "cal${channel}.{0,2}${want}" "$tmp/ocr.norm" > /dev/null; then  # the column rule may read as a letter
     echo "ok: lcm-spy decodes IMUCAL_${channel^^} as $type"; ok=$((ok + 1))

@@ -52,8 +52,8 @@ TEST(DaemonConfig, SettingsArriveInSi) {
 lcm_url: "udpm://239.255.76.67:7667?ttl=0"
 sensors: [icm42688@i2c-1:0x68, imu1]
 restore: false
-channels: {imu: A_IMU, calibration: A_CAL}
-publish: {calibration_rate_hz: 5, status_rate_hz: 2}
+channels: {imu: A_IMU, calibration: A_CAL, progress: A_PROGRESS}
+publish: {calibration_rate_hz: 5, status_rate_hz: 2, progress_rate_hz: 10}
 heading: {timeout_s: 0.5, keep_s: 60}
 input: {max_gap_s: 0.05, max_accel_g: 8, max_gyro_deg_per_s: 1000, queue_messages: 500}
 session:
@@ -70,6 +70,8 @@ calibration:
   EXPECT_EQ(c.node.calibration_channel, "A_CAL");
   EXPECT_EQ(c.node.heading_channel, "IMUCAL_HEADING");
   EXPECT_DOUBLE_EQ(c.node.calibration_rate_hz, 5.0);
+  EXPECT_EQ(c.node.progress_channel, "A_PROGRESS");
+  EXPECT_DOUBLE_EQ(c.node.progress_rate_hz, 10.0);
   EXPECT_DOUBLE_EQ(c.node.heading_timeout, 0.5);
   EXPECT_DOUBLE_EQ(c.service.heading_keep, 60.0);
   EXPECT_DOUBLE_EQ(c.service.gate.max_gap, 0.05);
@@ -92,6 +94,10 @@ TEST(DaemonConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(errorOf("input: {queue_messages: 0}\n").find("input.queue_messages"), std::string::npos)
       << errorOf("input: {queue_messages: 0}\n");
   EXPECT_NE(errorOf("channels: {imu: SAME, calibration: SAME}\n").find("channels.calibration"), std::string::npos);
+  EXPECT_NE(errorOf("channels: {imu: SAME, progress: SAME}\n").find("channels.progress: channel 'SAME' is also the imu channel"),
+            std::string::npos)
+      << errorOf("channels: {imu: SAME, progress: SAME}\n");
+  EXPECT_NE(errorOf("publish: {progress_rate_hz: 1000}\n").find("publish.progress_rate_hz"), std::string::npos);
   EXPECT_NE(errorOf("sensors: [a, a]\n").find("listed twice"), std::string::npos);
   EXPECT_NE(errorOf("session: {automatic: maybe}\n").find("session.automatic: expected true or false"),
             std::string::npos);

@@ -43,6 +43,7 @@ struct MemqDaemon {
   MemqDaemon() {
     lcm.subscribe("IMUCAL_CALIBRATION", &Collector::onCalibration, &collector);
     lcm.subscribe("IMUCAL_STATUS", &Collector::onStatus, &collector);
+    lcm.subscribe("IMUCAL_PROGRESS", &Collector::onProgress, &collector);
   }
   lcm::LCM lcm{"memq://"};
   CalibrationService service{serviceConfig()};
@@ -179,6 +180,56 @@ TEST(DaemonLcm, BatchedSamplesCalibrateAsSingleOnes) {
     // The batch that says it has no samples is dropped and counted, not fatal.
     EXPECT_EQ(batched.decode_errors, 1u);
   }
+}
+
+// While the user moves the device the daemon says, a few times a second, where the session stands: a turn
+// too small (210 deg) is refused with how far it went, then a full turn goes through hold still -> turn ->
+// hold still again, with the angle about body z growing.
+TEST(DaemonLcm, ProgressGuidesThroughARefusedAndAnAcceptedTurn) {
+  sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 53);
+  const auto still = [](double d) { return sim::Segment{sim::SegmentKind::Still, d, Vec3::UnitZ(), 0.0, sim::RateProfile::RaisedCosine}; };
+  const auto turn = [](double deg, double d) {
+    return sim::Segment{sim::SegmentKind::Rotate, d, Vec3::UnitZ(), deg * units::deg, sim::RateProfile::RaisedCosine};
+  };
+  sc.motion.segments = {still(6), turn(210, 6), still(6), turn(360, 10), still(6)};
+  const sim::SimOutput out = sim::simulate(sc, 53);
+  MemqDaemon d;
+  std::size_t h = 0;
+  for (std::size_t k = 0; k < out.imu.size(); ++k) {
+    publishHeadingsUpTo(d.lcm, out, out.imu[k].t, h);
+    const imucal::imu_sample_t m = toMessage(out.imu[k], static_cast<std::int64_t>(k));
+    d.lcm.publish("IMUCAL_IMU", &m);
+    while (d.lcm.handleTimeout(0) > 0) {
+    }
+  }
+  const auto& p = d.collector.progress;
+  // 5 Hz of data time over 34 s.
+  EXPECT_NEAR(static_cast<double>(p.size()), 34.0 * 5.0, 3.0);
+  const auto at = [&](double t) -> const imucal::session_progress_t& {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < p.size(); ++i)
+      if (std::abs(utimeAfter(t, 1'700'000'000'000'000) - p[i].utime) < std::abs(utimeAfter(t, 1'700'000'000'000'000) - p[best].utime)) best = i;
+    return p[best];
+  };
+  using P = imucal::session_progress_t;
+  EXPECT_EQ(at(5.0).phase, P::PHASE_HOLD_STILL);
+  EXPECT_EQ(at(5.0).hint.rfind("turn it once about the vertical", 0), 0u) << at(5.0).hint;
+  EXPECT_EQ(at(9.0).phase, P::PHASE_TURNING);
+  EXPECT_EQ(at(9.0).hint.rfind("keep turning: ", 0), 0u) << at(9.0).hint;
+  EXPECT_NEAR(at(9.0).turned_deg, 105.0, 10.0);  // half of the 210 deg turn
+  // After the small turn's trailing still: refused, and why.
+  EXPECT_EQ(at(17.0).rejected, 1);
+  EXPECT_EQ(at(17.0).last_rejection.rfind("turn was 2", 0), 0u) << at(17.0).last_rejection;
+  EXPECT_NE(at(17.0).last_rejection.find("need 300"), std::string::npos);
+  EXPECT_EQ(at(23.0).phase, P::PHASE_TURNING);
+  EXPECT_NEAR(at(23.0).turned_deg, 180.0, 10.0);
+  EXPECT_GT(at(23.0).turn_axis[2], 0.999);
+  EXPECT_EQ(at(29.5).phase, P::PHASE_HOLD_STILL_AGAIN);
+  EXPECT_EQ(at(29.5).hint.rfind("hold still again: ", 0), 0u) << at(29.5).hint;
+  // The full turn was a session: it ended calibrated, with no new refusal.
+  EXPECT_EQ(p.back().rejected, 1);
+  ASSERT_FALSE(d.collector.calibrations.empty());
+  EXPECT_EQ(d.collector.calibrations.back().state, imucal::calibration_t::STATE_CONVERGED);
 }
 
 }  // namespace

@@ -67,6 +67,9 @@ class CalibrationService {
   // turn / still is calibrated, even with automatic sessions off. An empty id triggers every known or
   // configured sensor. False when no such sensor is known or allowed.
   bool trigger(const std::string& sensor_id);
+  // Where the sensor's session stands (empty for a sensor not seen yet), and the thresholds it is judged by.
+  std::optional<SessionProgress> progress(const std::string& sensor_id) const;
+  const SessionDetectorConfig& sessionConfig() const { return config_.session; }
   // New settings for what comes next (SIGHUP): screening and detection thresholds apply from the next
   // sample, the filter from the next session; calibrations, counters and buffered samples are kept.
   void reconfigure(ServiceConfig config);

@@ -72,6 +72,7 @@ class LcmNode {
   void onTrigger(const imucal::calibration_trigger_t& msg);
   void publishStatuses(double data_now, std::int64_t utime);
   void publishStatus(const SensorReport& report, double data_now, std::int64_t utime);
+  void publishProgress(std::int64_t utime);
   double age(double since) const;
 
   lcm::LCM& lcm_;
@@ -81,7 +82,7 @@ class LcmNode {
   lcm::Subscription* imu_sub_ = nullptr;
   lcm::Subscription* heading_sub_ = nullptr;
   lcm::Subscription* trigger_sub_ = nullptr;
-  double last_calibration_ = -1e300, last_status_ = -1e300, latest_ = 0.0;
+  double last_calibration_ = -1e300, last_status_ = -1e300, last_progress_ = -1e300, latest_ = 0.0;
   double started_wall_ = 0.0, last_status_wall_ = 0.0, last_heading_wall_ = -1.0;
   bool heading_stale_logged_ = false;
   std::map<std::string, double> last_imu_wall_;

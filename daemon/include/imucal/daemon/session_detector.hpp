@@ -3,6 +3,7 @@
 // of the session (from the start of the first still run) so the calibration can run over all of them.
 #include <deque>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "imucal/core/static_detector.hpp"
@@ -23,6 +24,20 @@ struct SessionDetectorConfig {
 
 enum class SessionPhase { Waiting, LeadStill, Turning, TrailStill };
 
+// What a person holding the device needs to know now: where the session stands and, when the last motion
+// was not accepted, why.
+struct SessionProgress {
+  SessionPhase phase = SessionPhase::Waiting;
+  double phase_time = 0.0;        // s in this phase (the still runs: how long still so far)
+  double turned = 0.0;            // rad turned in the moving phase so far
+  Vec3 turn_axis = Vec3::Zero();  // body axis of the turn so far (unit; zero before any turn)
+  std::string last_rejection;     // why the last motion was not a session ("" when none was refused)
+  long rejected = 0;              // motions refused since the start
+};
+
+// What to do now, in words a person can follow while holding the device, under the detector's thresholds.
+std::string progressHint(const SessionProgress& progress, const SessionDetectorConfig& config);
+
 struct Session {
   std::vector<ImuSample> imu;
   double turned = 0.0;  // rad
@@ -39,9 +54,11 @@ class SessionDetector {
   void setConfig(const SessionDetectorConfig& config) { config_ = config; }
   SessionPhase phase() const { return phase_; }
   double turned() const { return turned_; }
+  SessionProgress progress() const;
 
  private:
   void dropBefore(double t);
+  void reject(std::string why);
 
   SessionDetectorConfig config_;
   SessionPhase phase_ = SessionPhase::Waiting;
@@ -54,6 +71,10 @@ class SessionDetector {
   double still_since_ = 0.0;
   double turn_start_ = 0.0;
   double turned_ = 0.0;
+  Vec3 turn_vector_ = Vec3::Zero();  // integral of the rate while turning: along the axis for a plain turn
+  double phase_start_ = 0.0, last_t_ = 0.0;
+  std::string last_rejection_;
+  long rejected_ = 0;
 };
 
 }  // namespace imucal::daemon

@@ -1,0 +1,16 @@
+#pragma once
+// One line of `imucal watch`: a session's progress as a person holding the device can follow it.
+#include <string>
+
+#include "imucal/lcmtypes.hpp"
+
+namespace imucal::cli {
+
+// "imu0 | hold still: 1.2 of 3.0 s", then "| turned 105 deg about +z" while turning and
+// "| refused 1: turn was 210 deg, need 300" once a motion was refused.
+std::string progressLine(const imucal::session_progress_t& m);
+
+// "+z", "-x", ... for an axis within 25 deg of a body axis, "(0.57, 0.57, 0.57)" otherwise, "" for none.
+std::string axisName(const double axis[3]);
+
+}  // namespace imucal::cli
