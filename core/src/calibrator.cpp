@@ -10,11 +10,13 @@
 #include "imucal/core/allan.hpp"
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/eskf.hpp"
+#include "imucal/core/filter_stepper.hpp"
 #include "imucal/core/heading_model.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/lever_arm.hpp"
 #include "imucal/core/param_vector.hpp"
 #include "imucal/core/rotation.hpp"
+#include "imucal/core/run_config.hpp"
 #include "imucal/core/sample_clock.hpp"
 #include "imucal/core/static_detector.hpp"
 #include "imucal/core/units.hpp"
@@ -83,15 +85,8 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   Eskf filter(config);
   const StateLayout& layout = filter.layout();
   const bool use_heading = m.heading && !heading.empty();
-  const InitialAlignment init = alignInitialState(imu, use_heading ? heading : std::vector<HeadingSample>{},
-                                                  config, params0, layout);
-  NavState nav0 = init.nav;
-  // The IMU sits at the lever arm from the centre, which the position pseudo-observation holds at zero.
-  const Mat3 c0 = nav0.q_nb.toRotationMatrix();
-  nav0.p = leverArmPosition(c0, toCalibrationParams(layout, params0, config.model).lever_arm);
-  StateMat P0 = init.P0;
-  correlateStartWithLeverArm(P0, layout, c0);
-  filter.initialize(imu.front(), nav0, params0, P0, prior_mean);
+  const InitialAlignment init = startFilter(filter, imu, use_heading ? heading : std::vector<HeadingSample>{}, config,
+                                           params0, prior_mean);
   filter.setFeedback(feedback);
 
   PassOutput out;
@@ -105,20 +100,12 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   const std::size_t stride =
       max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (steps + max_history_epochs - 1) / max_history_epochs);
   out.history.reserve(steps / stride + 2);
-  std::size_t h = init.first_unused_heading;
-  double heading_nis_sum = 0.0, velocity_nis_sum = 0.0;
-  const HeadingErrors heading_errors{m.heading_bias, m.heading_latency};
-  const auto headingTime = [&](std::size_t i) { return heading_errors.describedTime(heading[i].t); };
-  const auto applyHeading = [&](std::size_t i) {
-    const auto r = filter.updateHeading(heading[i].heading, m.heading_sigma, m.heading_gate_sigma);
-    if (r.accepted) {
-      ++out.stats.heading_updates;
-      heading_nis_sum += r.nis;
-    } else {
-      ++out.stats.heading_rejected;
-    }
-    filter.correct();
-  };
+  FilterStepper stepper(filter, m, per_step);
+  if (use_heading) {
+    const HeadingErrors heading_errors{m.heading_bias, m.heading_latency};
+    for (std::size_t i = init.first_unused_heading; i < heading.size(); ++i)
+      stepper.addHeading(heading_errors.describedTime(heading[i].t), heading[i].heading);
+  }
   const auto record = [&](std::size_t k) {
     checkFinite(filter, imu, k);
     EpochRecord e;
@@ -134,52 +121,12 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     out.history.push_back(std::move(e));
   };
   record(0);
-
-  std::vector<ImuSample> pending;  // the step's samples not yet predicted over
-  pending.reserve(per_step + 1);
-  const auto flush = [&] {
-    filter.predict(pending.data(), pending.size());
-    pending.clear();
-  };
-  for (std::size_t step = 0; step < steps; ++step) {
-    const std::size_t last = std::min(imu.size() - 1, (step + 1) * per_step);
-    for (std::size_t k = step * per_step + 1; k <= last; ++k) {
-      // A heading sample inside the step splits it: the filter is brought to its time and updated there. One
-      // at the step's last sample waits for the pseudo-observations, as at the sample itself.
-      bool at_sample = false;
-      while (use_heading && h < heading.size() &&
-             (headingTime(h) < imu[k].t || (k < last && headingTime(h) == imu[k].t))) {
-        const double th = headingTime(h);
-        if (th > filter.time()) {
-          at_sample = th == imu[k].t;
-          pending.push_back(at_sample ? imu[k] : interpolate(imu[k - 1], imu[k], th));
-          flush();
-          applyHeading(h);
-        } else if (at_sample && th == filter.time()) {
-          applyHeading(h);
-        }
-        ++h;
-      }
-      if (!at_sample) pending.push_back(imu[k]);
-    }
-    if (!pending.empty()) flush();
-    if (m.zero_velocity) {
-      velocity_nis_sum += filter.updateZeroVelocity(m.zero_velocity_sigma);
-      ++out.stats.zero_velocity_updates;
-    }
-    if (m.constant_position) {
-      filter.updateConstantPosition(Vec3::Zero(), m.constant_position_sigma);
-      ++out.stats.position_updates;
-    }
-    filter.correct();
-    while (use_heading && h < heading.size() && headingTime(h) == imu[last].t) applyHeading(h++);
+  for (std::size_t k = 1; k < imu.size(); ++k) {
+    const bool stepped = stepper.addImu(imu[k], k + 1 == imu.size());
     // NaN never turns finite again, so checking the recorded epochs (always the last) misses none.
-    if ((step + 1) % stride == 0 || step + 1 == steps) record(last);
+    if (stepped && (stepper.steps() % stride == 0 || stepper.steps() == steps)) record(k);
   }
-  if (out.stats.heading_updates > 0) out.stats.heading_nis_mean = heading_nis_sum / out.stats.heading_updates;
-  if (out.stats.zero_velocity_updates > 0) {
-    out.stats.velocity_nis_mean = velocity_nis_sum / (3.0 * out.stats.zero_velocity_updates);
-  }
+  out.stats = stepper.stats();
   out.params = filter.estimatedParams();
   out.P = filter.covariance();
   out.log_likelihood = filter.logLikelihood();
@@ -381,32 +328,13 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   const std::vector<ImuSample>& imu = window.first > 0 ? trimmed : recording;
   result.first_sample = window.first;
   if (imu.size() < 10) throw std::invalid_argument("calibrate: fewer than 10 IMU samples after the first quiet stretch");
-  FilterConfig config = effectiveConfig(given, &result.warnings);
   const std::vector<bool> still = detectStill(imu);
-  if (config.noise.from_data) {
-    result.noise_measured = estimateWhiteNoise(imu, still);
-    if (result.noise_measured.valid) {
-      config.noise.accel_white = result.noise_measured.accel_white_rms;
-      config.noise.gyro_white = result.noise_measured.gyro_white_rms;
-    } else {
-      result.warnings.push_back("noise: too little still data to measure the white noise; the configured "
-                                "densities are used");
-    }
-    // Only a long still run shows the bias drift; otherwise the configured walk stands (a board's config
-    // carries what a long still recording of it measured).
-    result.bias_walk_measured = estimateBiasWalk(imu, still);
-    if (result.bias_walk_measured.valid) {
-      config.noise.accel_bias_walk = result.bias_walk_measured.accel_walk_used;
-      config.noise.accel_bias_instability = result.bias_walk_measured.accel_instability_used;
-      config.noise.gyro_bias_walk = result.bias_walk_measured.gyro_walk_used;
-      config.noise.gyro_bias_instability = result.bias_walk_measured.gyro_instability_used;
-    }
-  }
-  // The filter's biases walk; a flicker floor becomes the walk that wanders as far over this recording.
   const double span = imu.back().t - imu.front().t;
-  config.noise.accel_bias_walk =
-      equivalentRandomWalk(config.noise.accel_bias_walk, config.noise.accel_bias_instability, span);
-  config.noise.gyro_bias_walk = equivalentRandomWalk(config.noise.gyro_bias_walk, config.noise.gyro_bias_instability, span);
+  RunConfig run = runConfig(given, imu, still, span);
+  const FilterConfig& config = run.config;
+  result.warnings.insert(result.warnings.end(), run.warnings.begin(), run.warnings.end());
+  result.noise_measured = run.noise_measured;
+  result.bias_walk_measured = run.bias_walk_measured;
   result.noise_used = config.noise;
   std::vector<HeadingSample> heading = raw_heading;
   const HeadingErrors heading_errors{config.measurements.heading_bias, config.measurements.heading_latency};

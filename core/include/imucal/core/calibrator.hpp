@@ -9,6 +9,7 @@
 #include "imucal/core/combinations.hpp"
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/filter_config.hpp"
+#include "imucal/core/filter_stepper.hpp"
 #include "imucal/core/increment_consistency.hpp"
 #include "imucal/core/innovation_whiteness.hpp"
 #include "imucal/core/noise_from_data.hpp"
@@ -29,14 +30,6 @@ struct EpochRecord {
   bool still = false;         // static detector's verdict
 };
 
-struct MeasurementStats {
-  long zero_velocity_updates = 0;
-  long position_updates = 0;
-  long heading_updates = 0;
-  long heading_rejected = 0;      // failed the innovation gate
-  double heading_nis_mean = 0.0;  // mean normalized innovation squared (1 when consistent)
-  double velocity_nis_mean = 0.0; // per component
-};
 
 struct CalibrationResult {
   StateLayout layout;

@@ -75,6 +75,8 @@ class Eskf {
   void setIncrementCheck(IncrementConsistencyCheck* check) { increments_ = check; }
 
   double time() const { return last_raw_.t; }
+  // The raw sample the filter stands at (the last one predicted over, or the first).
+  const ImuSample& lastRaw() const { return last_raw_; }
   const NavState& nav() const { return nav_; }
   const VecX& params() const { return params_; }
   const StateMat& covariance() const { return P_; }

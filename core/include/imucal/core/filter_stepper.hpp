@@ -1,0 +1,67 @@
+#pragma once
+// Drives an initialized filter through a stream of IMU and heading samples: one filter step per
+// `per_step` IMU samples (see imu_increment.hpp), the pseudo-observations after each step, and each heading
+// at its own time (a heading inside a step splits it there). The calibrator's passes and the daemon's live
+// estimate both step through this, so a running estimate and the final one see the data the same way.
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+#include "imucal/core/eskf.hpp"
+#include "imucal/core/filter_config.hpp"
+#include "imucal/core/initial_alignment.hpp"
+#include "imucal/core/types.hpp"
+
+namespace imucal {
+
+struct MeasurementStats {
+  long zero_velocity_updates = 0;
+  long position_updates = 0;
+  long heading_updates = 0;
+  long heading_rejected = 0;      // failed the innovation gate
+  long heading_late = 0;          // arrived for a time the filter had already passed: not used
+  double heading_nis_mean = 0.0;  // mean normalized innovation squared (1 when consistent)
+  double velocity_nis_mean = 0.0; // per component
+};
+
+// Levels the filter on the still stretch at the start of imu (see alignInitialState), places the IMU at
+// the lever arm from the centre and initializes it at imu.front(); params0 and prior_mean as in
+// Eskf::initialize. The headings before the alignment's first_unused_heading were folded into its yaw.
+InitialAlignment startFilter(Eskf& filter, const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                             const FilterConfig& config, const VecX& params0, const VecX& prior_mean = VecX());
+
+class FilterStepper {
+ public:
+  // `filter` must be initialized at the stream's first IMU sample and outlive the stepper.
+  FilterStepper(Eskf& filter, const MeasurementConfig& measurements, std::size_t per_step);
+  // A heading (corrected for its bias) stamped with the time it describes; in time order. It is applied
+  // when the IMU stream reaches that time.
+  void addHeading(double t, double heading);
+  // The next IMU sample (later than the last); true when it ended a filter step. end_step ends the step
+  // here even if it is shorter than per_step (the stream's last sample).
+  bool addImu(const ImuSample& sample, bool end_step = false);
+  const MeasurementStats& stats() const { return stats_; }
+  std::size_t steps() const { return steps_; }
+
+ private:
+  struct Heading {
+    double t, value;
+  };
+  void flush();
+  void applyHeading(double value);
+  void endStep();
+
+  Eskf& filter_;
+  MeasurementConfig m_;
+  std::size_t per_step_;
+  std::deque<Heading> headings_;
+  std::vector<ImuSample> pending_;  // the step's samples not yet predicted over
+  std::size_t in_step_ = 0;         // samples of the current step so far
+  std::size_t steps_ = 0;
+  ImuSample previous_;
+  bool has_previous_ = false;
+  double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0;
+  MeasurementStats stats_;
+};
+
+}  // namespace imucal
