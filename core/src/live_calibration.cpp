@@ -123,6 +123,7 @@ LiveEstimate LiveCalibration::estimate() const {
   e.sigma = filter_->covariance().diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
   e.prior_sigma = prior_sigma_;
   e.t = filter_->time();
+  e.start_t = imu_.front().t;
   e.steps = stepper_->steps();
   e.stats = stepper_->stats();
   return e;

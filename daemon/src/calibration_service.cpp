@@ -29,7 +29,7 @@ CalibrationService::~CalibrationService() {
 CalibrationService::Sensor& CalibrationService::sensor(const std::string& id) {
   auto it = sensors_.find(id);
   if (it == sensors_.end()) {
-    it = sensors_.emplace(id, Sensor{InputGate(config_.gate), SessionDetector(config_.session), false, {}, {}}).first;
+    it = sensors_.emplace(id, Sensor{InputGate(config_.gate), SessionDetector(config_.session), false, {}, {}, nullptr, 0.0}).first;
     reports_[id].sensor_id = id;
   }
   return it->second;
@@ -80,6 +80,7 @@ bool CalibrationService::trigger(const std::string& id) {
   for (const auto& i : ids) {
     Sensor& sn = sensor(i);
     sn.detector.reset();
+    sn.live.reset();
     sn.armed = true;
   }
   return !ids.empty();
@@ -102,8 +103,50 @@ bool CalibrationService::onHeading(const HeadingSample& h) {
   headings_.push_back(h);
   ++heading_accepted_;
   while (!headings_.empty() && headings_.front().t < h.t - config_.heading_keep) headings_.pop_front();
+  for (auto& [id, sn] : sensors_)
+    if (sn.live) sn.live->addHeading(h);
   for (auto& [id, r] : reports_) r.heading_accepted = heading_accepted_;
   return false;
+}
+
+std::optional<LiveEstimate> CalibrationService::liveEstimate(const std::string& id) const {
+  const auto it = sensors_.find(id);
+  if (it == sensors_.end() || !it->second.live) return std::nullopt;
+  return it->second.live->estimate();
+}
+
+void CalibrationService::updateLive(Sensor& sn, SessionPhase before, const ImuSample& s) {
+  const SessionPhase now = sn.detector.phase();
+  const bool recording = now == SessionPhase::Turning || now == SessionPhase::TrailStill;
+  if (!recording || config_.live_refine_interval <= 0.0) {
+    sn.live.reset();
+    return;
+  }
+  if (before == SessionPhase::LeadStill) {
+    // The turn starts: the still run so far leads the running estimate.
+    const std::vector<ImuSample> lead = sn.detector.samples();
+    std::vector<HeadingSample> heading;
+    for (const auto& h : headings_)
+      if (h.t >= lead.front().t && h.t <= lead.back().t) heading.push_back(h);
+    const double span = lead.back().t - lead.front().t + config_.session.max_turn_time + config_.session.min_still;
+    try {
+      sn.live = std::make_unique<LiveCalibration>(lead, heading, config_.filter, span);
+    } catch (const std::invalid_argument&) {
+      // A lead the filter cannot start on still makes a session; it just has no running estimate.
+      sn.live.reset();
+    }
+    sn.live_refined_at = s.t;
+    return;
+  }
+  if (!sn.live) return;
+  sn.live->addImu(s);
+  // A single pass linearized about the prior is overconfident while the turn separates the biases from
+  // the attitude; the refined pass is as honest as the final calibration.
+  if (s.t - sn.live_refined_at >= config_.live_refine_interval) {
+    sn.live->refine();
+    sn.live_refined_at = s.t;
+  }
+  if (!sn.live->failure().empty()) sn.live.reset();
 }
 
 std::optional<SessionProgress> CalibrationService::progress(const std::string& id) const {
@@ -126,7 +169,9 @@ bool CalibrationService::onImu(const std::string& id, const ImuSample& s, std::i
   if (!config_.automatic_sessions && !sn.armed) return false;
   const SessionPhase before = sn.detector.phase();
   std::optional<Session> session = sn.detector.push(s);
+  updateLive(sn, before, s);
   if (session) {
+    sn.live.reset();
     sn.armed = false;
     return finishSession(id, *session);
   }

@@ -74,8 +74,9 @@ StaticDetectorConfig readStill(YamlSection s, StaticDetectorConfig d) {
   return d;
 }
 
-SessionDetectorConfig readSession(YamlSection s, SessionDetectorConfig d, bool& automatic) {
+SessionDetectorConfig readSession(YamlSection s, SessionDetectorConfig d, bool& automatic, double& live_refine) {
   automatic = s.boolean("automatic", automatic);
+  live_refine = s.number("live_refine_s", live_refine, Range::between(0.0, 3600.0));
   d.min_still = s.number("min_still_s", d.min_still, Range::positive());
   d.max_lead_still = s.number("max_lead_still_s", d.max_lead_still, Range::positive());
   if (d.max_lead_still < d.min_still)
@@ -128,7 +129,8 @@ DaemonConfig fromYaml(const YAML::Node& root, const std::string& name, const std
   readPublish(top.section("publish"), c.node);
   readHeading(top.section("heading"), c.node, c.service);
   c.service.gate = readInput(top.section("input"), c.service.gate, c.node);
-  c.service.session = readSession(top.section("session"), c.service.session, c.service.automatic_sessions);
+  c.service.session = readSession(top.section("session"), c.service.session, c.service.automatic_sessions,
+                                  c.service.live_refine_interval);
   c.service.filter = readCalibration(top, base_dir);
   top.finish();
   return c;

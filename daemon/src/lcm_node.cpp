@@ -311,6 +311,14 @@ void LcmNode::publishProgress(std::int64_t utime) {
     m.hint = progressHint(*p, service_.sessionConfig());
     m.last_rejection = p->last_rejection;
     m.rejected = static_cast<std::int32_t>(p->rejected);
+    if (const std::optional<LiveEstimate> live = service_.liveEstimate(id)) {
+      m.num_params = static_cast<std::int32_t>(live->names.size());
+      m.param_names = live->names;
+      m.values.assign(live->estimate.data(), live->estimate.data() + live->estimate.size());
+      m.sigmas.assign(live->sigma.data(), live->sigma.data() + live->sigma.size());
+      m.prior_sigmas.assign(live->prior_sigma.data(), live->prior_sigma.data() + live->prior_sigma.size());
+      m.estimate_time_s = live->t - live->start_t;
+    }
     lcm_.publish(config_.progress_channel, &m);
   }
 }

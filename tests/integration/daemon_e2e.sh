@@ -26,7 +26,7 @@ rc=0; wait "$check" || rc=$?
 if [ "$rc" -ne 0 ]; then echo "live calibration check failed ($rc)"; cat "$tmp/daemon.log"; exit 1; fi
 test -s "$tmp/state/calibration-imu0.json" || { echo "no persisted calibration"; exit 1; }
 rc=0; wait "$watch" || rc=$?
-for expected in '^imu0 \| hold still: ' '^imu0 \| turn it once about the vertical' '^imu0 \| keep turning: [0-9]+ of 300 deg \| turned [0-9]+ deg about [+-]z$'; do
+for expected in '^imu0 \| hold still: ' '^imu0 \| turn it once about the vertical' '^imu0 \| keep turning: [0-9]+ of 300 deg \| turned [0-9]+ deg about [+-]z \| gyro_bias \[deg/h\] x -?[0-9.]+ \+- [0-9.]+, y '; do
   grep -Eq "$expected" "$tmp/watch.txt" || { echo "imucal watch (rc $rc) never showed /$expected/:"; cat "$tmp/watch.txt"; exit 1; }
 done
 echo "imucal watch: $(wc -l < "$tmp/watch.txt") lines, e.g. '$(grep -m1 'keep turning' "$tmp/watch.txt")'"

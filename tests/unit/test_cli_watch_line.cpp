@@ -33,5 +33,27 @@ TEST(CliWatchLine, SaysWhatToDoHowFarAndWhyRefused) {
   EXPECT_EQ(progressLine(m), "imu0 | keep turning: 105 of 300 deg | turned 105 deg about -z | refused 1: turn was 210 deg, need 300");
 }
 
+TEST(CliWatchLine, ShowsTheRunningBiasesInHumanUnits) {
+  imucal::session_progress_t m{};
+  m.sensor_id = "imu0";
+  m.phase = imucal::session_progress_t::PHASE_TURNING;
+  m.hint = "keep turning: 180 of 300 deg";
+  m.turned_deg = 180.0;
+  m.turn_axis[2] = 1.0;
+  // 1210 deg/h = 5.866e-3 rad/s; 45 mg = 0.4413 m/s^2; a scale factor is not on the line.
+  const double deg_per_h = 3.14159265358979323846 / 180.0 / 3600.0;
+  m.param_names = {"accel_bias_x", "gyro_bias_x", "gyro_bias_z", "gyro_scale_z"};
+  m.values = {45.0e-3 * 9.80665, 1210.0 * deg_per_h, -300.4 * deg_per_h, 1e-3};
+  m.sigmas = {0.31e-6 * 9.80665 * 1000.0, 35.0 * deg_per_h, 900.0 * deg_per_h, 1e-4};
+  m.prior_sigmas = m.sigmas;
+  m.num_params = 4;
+  EXPECT_EQ(progressLine(m),
+            "imu0 | keep turning: 180 of 300 deg | turned 180 deg about +z | gyro_bias [deg/h] x 1210 +- 35, z -300 +- 900"
+            " | accel_bias [ug] x 45000 +- 310");
+  EXPECT_EQ(withSigma(45.123, 0.31), "45.12 +- 0.31");
+  EXPECT_EQ(withSigma(1210.4, 35.0), "1210 +- 35");
+  EXPECT_EQ(withSigma(1.0, 0.0), "1 +- 0");
+}
+
 }  // namespace
 }  // namespace imucal::cli

@@ -35,6 +35,7 @@ TEST(DaemonConfig, ShippedFileHasTheDefaults) {
   EXPECT_TRUE(c.service.sensors.empty());
   EXPECT_EQ(c.service.max_sensors, d.service.max_sensors);
   EXPECT_EQ(c.service.automatic_sessions, d.service.automatic_sessions);
+  EXPECT_EQ(c.service.live_refine_interval, d.service.live_refine_interval);
   const auto near = [](double a, double b) { return std::abs(a - b) <= 1e-4 * std::abs(b); };
   EXPECT_TRUE(near(c.service.gate.max_gyro, d.service.gate.max_gyro)) << c.service.gate.max_gyro;
   EXPECT_TRUE(near(c.service.gate.max_accel, d.service.gate.max_accel));
@@ -58,6 +59,7 @@ heading: {timeout_s: 0.5, keep_s: 60}
 input: {max_gap_s: 0.05, max_accel_g: 8, max_gyro_deg_per_s: 1000, queue_messages: 500}
 session:
   automatic: false
+  live_refine_s: 2.5
   min_turn_deg: 270
   still: {gyro_std_max_deg_per_s: 2, accel_std_max_mg: 20}
 calibration:
@@ -79,6 +81,7 @@ calibration:
   EXPECT_NEAR(c.service.gate.max_accel, 8.0 * units::kStandardGravity, 1e-12);
   EXPECT_NEAR(c.service.gate.max_gyro, 1000.0 * units::deg_per_s, 1e-12);
   EXPECT_FALSE(c.service.automatic_sessions);
+  EXPECT_DOUBLE_EQ(c.service.live_refine_interval, 2.5);
   EXPECT_NEAR(c.service.session.min_turn, 270.0 * units::deg, 1e-12);
   EXPECT_NEAR(c.service.session.still.gyro_std_max, 2.0 * units::deg_per_s, 1e-12);
   EXPECT_NEAR(c.service.session.still.accel_std_max, 20.0 * units::milli_g, 1e-12);

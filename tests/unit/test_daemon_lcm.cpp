@@ -226,6 +226,27 @@ TEST(DaemonLcm, ProgressGuidesThroughARefusedAndAnAcceptedTurn) {
   EXPECT_GT(at(23.0).turn_axis[2], 0.999);
   EXPECT_EQ(at(29.5).phase, P::PHASE_HOLD_STILL_AGAIN);
   EXPECT_EQ(at(29.5).hint.rfind("hold still again: ", 0), 0u) << at(29.5).hint;
+  // The running estimate: none while still, one while turning (the refused turn's too), holding the
+  // truth within its sigma and shrinking towards what the session will give.
+  EXPECT_EQ(at(5.0).num_params, 0);
+  // The biases and, with gravity unknown to the default config, its magnitude's error.
+  EXPECT_EQ(at(9.0).num_params, 7);
+  EXPECT_EQ(at(17.0).num_params, 0);
+  const Vec3 gyro_bias = out.applied_errors.gyro.bias;
+  for (double t : {23.0, 26.0, 29.5}) {
+    const P& m = at(t);
+    ASSERT_EQ(m.num_params, 7) << t;
+    ASSERT_EQ(m.param_names[3], "gyro_bias_x");
+    // From the start of the still run that leads the turn: the refused turn's trailing still, from 12 s
+    // less the still test's 0.5 s window.
+    EXPECT_NEAR(m.estimate_time_s, t - 11.5, 0.3);
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_LT(std::abs(m.values[3 + i] - gyro_bias(i)), 4.0 * m.sigmas[3 + i]) << t << " " << i;
+      EXPECT_LT(m.sigmas[3 + i], m.prior_sigmas[3 + i]) << t << " " << i;
+    }
+  }
+  for (int i = 0; i < 2; ++i) EXPECT_LT(at(29.5).sigmas[3 + i], 0.1 * at(29.5).prior_sigmas[3 + i]) << i;
+  EXPECT_LT(at(29.5).sigmas[3], at(23.0).sigmas[3]);
   // The full turn was a session: it ended calibrated, with no new refusal.
   EXPECT_EQ(p.back().rejected, 1);
   ASSERT_FALSE(d.collector.calibrations.empty());

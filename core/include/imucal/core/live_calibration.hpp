@@ -26,6 +26,7 @@ struct LiveEstimate {
   VecX sigma;                      // 1-sigma, SI (not yet inflated by the end-of-session consistency checks)
   VecX prior_sigma;
   double t = 0.0;                  // time of the last filter step
+  double start_t = 0.0;            // time of the first sample
   std::size_t steps = 0;
   MeasurementStats stats;
 };

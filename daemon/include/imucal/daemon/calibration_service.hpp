@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "imucal/core/calibrator.hpp"
+#include "imucal/core/live_calibration.hpp"
 #include "imucal/daemon/calibration_store.hpp"
 #include "imucal/daemon/input_gate.hpp"
 #include "imucal/daemon/session_calibration.hpp"
@@ -39,6 +40,9 @@ struct ServiceConfig {
   // stream overflows a socket buffer in the ~0.1 s a calibration takes; 8 kHz in 2 s). Results are then
   // applied by collectFinished(), woken through wakeFd(). Off: at once, inside onImu (deterministic tests).
   bool background_calibration = false;
+  // While a turn is recorded a running estimate is kept, refined (one filter pass over the session so far,
+  // see live_calibration.hpp) every this many seconds of data; 0: no running estimate.
+  double live_refine_interval = 1.0;
 };
 
 // What the node publishes for one sensor.
@@ -70,6 +74,8 @@ class CalibrationService {
   // Where the sensor's session stands (empty for a sensor not seen yet), and the thresholds it is judged by.
   std::optional<SessionProgress> progress(const std::string& sensor_id) const;
   const SessionDetectorConfig& sessionConfig() const { return config_.session; }
+  // The running estimate of the session being recorded (empty when none is).
+  std::optional<LiveEstimate> liveEstimate(const std::string& sensor_id) const;
   // New settings for what comes next (SIGHUP): screening and detection thresholds apply from the next
   // sample, the filter from the next session; calibrations, counters and buffered samples are kept.
   void reconfigure(ServiceConfig config);
@@ -93,7 +99,10 @@ class CalibrationService {
     bool armed = false;  // a trigger asked for a session (needed when sessions are not automatic)
     std::future<SessionOutcome> pending;  // a calibration running in the background, on `worker`
     std::thread worker;
+    std::unique_ptr<LiveCalibration> live;  // while a turn is recorded
+    double live_refined_at = 0.0;
   };
+  void updateLive(Sensor& sensor, SessionPhase before, const ImuSample& sample);
   SessionOutcome takePending(Sensor& sensor);
   Sensor& sensor(const std::string& id);
   bool allowed(const std::string& id) const;

@@ -55,6 +55,8 @@ class SessionDetector {
   SessionPhase phase() const { return phase_; }
   double turned() const { return turned_; }
   SessionProgress progress() const;
+  // The samples kept of the session so far (from the start of its still run).
+  std::vector<ImuSample> samples() const { return {buffer_.begin(), buffer_.end()}; }
 
  private:
   void dropBefore(double t);
