@@ -56,6 +56,9 @@ std::string progressLine(const imucal::session_progress_t& m) {
     line += " | turned " + std::to_string(std::lround(m.turned_deg)) + " deg" + (axis.empty() ? "" : " about " + axis);
   }
   line += runningBiases(m);
+  // Between sessions: what the last one could not reveal, and how to.
+  const bool between = m.phase == imucal::session_progress_t::PHASE_WAITING || m.phase == imucal::session_progress_t::PHASE_HOLD_STILL;
+  if (between && !m.advice.empty()) line += " | next: " + m.advice;
   if (m.rejected > 0) line += " | refused " + std::to_string(m.rejected) + ": " + m.last_rejection;
   return line;
 }

@@ -8,7 +8,8 @@ namespace imucal::cli {
 
 // "imu0 | hold still: 1.2 of 3.0 s", then "| turned 105 deg about +z" while turning, the running bias
 // estimates in human units ("| gyro_bias [deg/h] x 1210 +- 35, y ...") while there are any, and
-// "| refused 1: turn was 210 deg, need 300" once a motion was refused.
+// "| next: <the planner's advice>" between sessions once one gave some, and "| refused 1: turn was 210
+// deg, need 300" once a motion was refused.
 std::string progressLine(const imucal::session_progress_t& m);
 
 // "1210 +- 35", "45.12 +- 0.31": the value to the sigma's second significant digit.

@@ -260,12 +260,24 @@ void markUnsettled(CalibrationResult& result, const VecX& step, const VecX& prev
   result.warnings.push_back(msg.str());
 }
 
+}  // namespace
+
+bool limitedByGravity(const MatX& cov, const StateLayout& layout, int j) {
+  const int g = layout.paramOffset(ParamBlock::Gravity);
+  if (g < 0 || j == g) return false;
+  // Gravity's share of the variance (an inflation scales both alike).
+  const double var_g = cov(g, g), p_jg = cov(j, g);
+  return var_g > 0.0 && p_jg * p_jg / var_g > 0.5 * cov(j, j);
+}
+
+namespace {
+
 // Converged: estimated (not considered), sigma below sigma_ratio of its prior, and not mostly gravity's
 // uncertainty; with the time from which its estimate stayed within twice its final sigma.
 void markConverged(CalibrationResult& result, const StateMat& P, const StateLayout& layout, double sigma_ratio) {
   const int n = layout.paramCount();
   constexpr int p0 = StateLayout::kParamStart;
-  const int gravity = layout.paramOffset(ParamBlock::Gravity);
+  const MatX params_p = P.block(p0, p0, n, n);
   result.converged.assign(n, false);
   result.not_converged_reason.assign(n, "");
   result.convergence_time = VecX::Constant(n, std::numeric_limits<double>::quiet_NaN());
@@ -286,17 +298,9 @@ void markConverged(CalibrationResult& result, const StateMat& P, const StateLayo
       result.not_converged_reason[j] = "sigma above " + std::to_string(sigma_ratio) + " of the prior";
       continue;
     }
-    // A parameter whose variance is mostly gravity's (the accelerometer z bias when g is unknown) says
-    // more about the assumed gravity than about the sensor.
-    if (gravity >= 0 && j != gravity) {
-      // Gravity's share of the variance (the inflation scales both alike).
-      const double p_jg = P(p0 + j, p0 + gravity);
-      const double var_g = P(p0 + gravity, p0 + gravity);
-      const double var = P(p0 + j, p0 + j);
-      if (var_g > 0.0 && p_jg * p_jg / var_g > 0.5 * var) {
-        result.not_converged_reason[j] = kLimitedByGravity;
-        continue;
-      }
+    if (limitedByGravity(params_p, layout, j)) {
+      result.not_converged_reason[j] = kLimitedByGravity;
+      continue;
     }
     result.converged[j] = true;
     result.convergence_time(j) = selfConvergenceTime(t, x, s, 2.0 * result.sigma(j));

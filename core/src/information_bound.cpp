@@ -26,7 +26,7 @@ Linearization linearizeStep(const std::vector<TrajectoryPoint>& traj, std::size_
 }  // namespace
 
 BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std::vector<double>& heading_times,
-                             const FilterConfig& given) {
+                             const FilterConfig& given, const MatX& param_prior) {
   if (traj.size() < 2) throw std::invalid_argument("informationBound: need at least two trajectory points");
   const FilterConfig config = effectiveConfig(given);
   const StateLayout layout = StateLayout::make(config.model, config.measurements.centre_motion.enabled);
@@ -44,6 +44,13 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
   }
   const double yaw_var = folded > 0 ? m.heading_sigma * m.heading_sigma / folded : config.prior.yaw * config.prior.yaw;
   StateMat P = priorCovariance(config, layout, yaw_var);
+  if (param_prior.size() > 0) {
+    const int n = layout.paramCount();
+    if (param_prior.rows() != n || param_prior.cols() != n)
+      throw std::invalid_argument("informationBound: the parameter prior is " + std::to_string(param_prior.rows()) + "x" +
+                                  std::to_string(param_prior.cols()) + ", the model has " + std::to_string(n) + " parameters");
+    P.block(StateLayout::kParamStart, StateLayout::kParamStart, n, n) = param_prior;
+  }
   correlateStartWithLeverArm(P, layout, traj.front().q_nb.toRotationMatrix());
 
   BoundResult out;

@@ -233,6 +233,7 @@ SessionOutcome CalibrationService::takePending(Sensor& sn) {
 void CalibrationService::apply(const SessionOutcome& outcome) {
   SensorReport& report = reports_[outcome.sensor_id];
   report.last_stats = outcome.stats;
+  report.advice = outcome.advice;
   if (!outcome.calibration) {
     report.state = CalibrationState::Failed;
     report.failure = outcome.failure;

@@ -311,6 +311,7 @@ void LcmNode::publishProgress(std::int64_t utime) {
     m.hint = progressHint(*p, service_.sessionConfig());
     m.last_rejection = p->last_rejection;
     m.rejected = static_cast<std::int32_t>(p->rejected);
+    m.advice = report.advice;
     if (const std::optional<LiveEstimate> live = service_.liveEstimate(id)) {
       m.num_params = static_cast<std::int32_t>(live->names.size());
       m.param_names = live->names;

@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "imucal/core/consistency.hpp"
+#include "imucal/core/motion_planner.hpp"
 
 namespace imucal::daemon {
 
@@ -37,6 +38,17 @@ SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<
     return out;
   }
   out.stats = result.stats;
+  try {
+    // The bound's sigmas do not depend on the sample rate beyond the filter's: plan at the filter rate.
+    const double span = t1 - t0;
+    const double heading_rate = filter.measurements.heading && span > 0.0 ? static_cast<double>(heading.size()) / span : 0.0;
+    FilterConfig plan = filter;
+    plan.noise = result.noise_used;  // the noise the session ran with, measured on its stills
+    out.advice = adviceText(planNextMotion(result.names, result.covariance, result.prior_sigma, plan, plan.filter_rate,
+                                           heading_rate));
+  } catch (const std::exception&) {
+    out.advice.clear();  // a motion the planner cannot judge must not cost the calibration
+  }
   if (const std::vector<std::string> problems = inconsistencies(result); !problems.empty()) {
     out.failure = "refused: the model does not describe this session: " + problems.front();
     return out;

@@ -50,6 +50,17 @@ TEST(CliWatchLine, ShowsTheRunningBiasesInHumanUnits) {
   EXPECT_EQ(progressLine(m),
             "imu0 | keep turning: 180 of 300 deg | turned 180 deg about +z | gyro_bias [deg/h] x 1210 +- 35, z -300 +- 900"
             " | accel_bias [ug] x 45000 +- 310");
+  // Between sessions the advice shows, not while turning.
+  m.advice = "turn it upside down, hold it still, then turn it once about the vertical (reveals gravity)";
+  EXPECT_EQ(progressLine(m).find("next:"), std::string::npos);
+  m.phase = imucal::session_progress_t::PHASE_HOLD_STILL;
+  m.hint = "hold still: 1.0 of 3.0 s";
+  m.param_names.clear();
+  m.values.clear();
+  m.sigmas.clear();
+  m.num_params = 0;
+  EXPECT_EQ(progressLine(m), "imu0 | hold still: 1.0 of 3.0 s | next: turn it upside down, hold it still, then turn it "
+                             "once about the vertical (reveals gravity)");
   EXPECT_EQ(withSigma(45.123, 0.31), "45.12 +- 0.31");
   EXPECT_EQ(withSigma(1210.4, 35.0), "1210 +- 35");
   EXPECT_EQ(withSigma(1.0, 0.0), "1 +- 0");

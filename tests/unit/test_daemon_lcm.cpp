@@ -247,6 +247,12 @@ TEST(DaemonLcm, ProgressGuidesThroughARefusedAndAnAcceptedTurn) {
   }
   for (int i = 0; i < 2; ++i) EXPECT_LT(at(29.5).sigmas[3 + i], 0.1 * at(29.5).prior_sigmas[3 + i]) << i;
   EXPECT_LT(at(29.5).sigmas[3], at(23.0).sigmas[3]);
+  // After the session, the planner's advice: gravity was not given, so the level turn left the z
+  // accelerometer bias and gravity as one number; before it there was none.
+  EXPECT_EQ(at(17.0).advice, "");
+  EXPECT_EQ(p.back().phase, P::PHASE_HOLD_STILL);
+  EXPECT_NE(p.back().advice.find("turn it once about the vertical (reveals "), std::string::npos) << p.back().advice;
+  EXPECT_NE(p.back().advice.find("accel_bias_z"), std::string::npos) << p.back().advice;
   // The full turn was a session: it ended calibrated, with no new refusal.
   EXPECT_EQ(p.back().rejected, 1);
   ASSERT_FALSE(d.collector.calibrations.empty());

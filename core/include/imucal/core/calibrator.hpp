@@ -74,6 +74,11 @@ struct CalibrationResult {
 
 // not_converged_reason of a parameter whose sigma is mostly the unknown gravity magnitude's.
 inline constexpr const char* kLimitedByGravity = "limited by the unknown gravity magnitude";
+// Whether most of parameter j's variance is the unknown gravity magnitude's (the accelerometer z bias on a
+// level turn when g is not given): such a value says more about the assumed gravity than about the sensor.
+// param_covariance: the parameters' covariance in state order.
+bool limitedByGravity(const MatX& param_covariance, const StateLayout& layout, int j);
+
 // Start of the reason of a parameter the passes were still moving when they ran out.
 inline constexpr const char* kUnsettledPrefix = "the passes had not settled: ";
 // Start of the reason of a parameter whose variance is mostly that of unconverged ones (see combinations).

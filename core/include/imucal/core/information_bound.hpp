@@ -26,7 +26,9 @@ struct BoundResult {
 };
 
 // heading_times: when heading samples arrive (already shifted by any latency), empty for none.
+// param_prior: the parameters' covariance before this motion (state order, SI), for a motion that follows
+// one already calibrated; empty: the config's prior.
 BoundResult informationBound(const std::vector<TrajectoryPoint>& trajectory, const std::vector<double>& heading_times,
-                             const FilterConfig& config);
+                             const FilterConfig& config, const MatX& param_prior = MatX());
 
 }  // namespace imucal

@@ -56,6 +56,7 @@ struct SensorReport {
   InputCounters imu;
   std::uint64_t heading_accepted = 0, heading_rejected = 0;
   MeasurementStats last_stats;
+  std::string advice;             // what to do next, after the last session (see motion_planner.hpp)
 };
 
 class CalibrationService {

@@ -16,6 +16,9 @@ struct SessionOutcome {
   std::string failure;        // why not (empty when it converged)
   std::string persist_error;  // converged, but the file could not be written
   MeasurementStats stats;
+  // What to do next to reveal what this session left unknown (see motion_planner.hpp); empty when the
+  // session gave no result to plan from.
+  std::string advice;
 };
 
 // Heading samples outside the session's time span are ignored; none at all: calibrated without heading.
