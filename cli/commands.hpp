@@ -16,6 +16,7 @@ void addSimulateCommand(CLI::App& app);
 void addCalibrateCommand(CLI::App& app);
 void addMonteCarloCommand(CLI::App& app);
 void addBoundCommand(CLI::App& app);
+void addPlanCommand(CLI::App& app);
 void addDiagnoseCommand(CLI::App& app);
 void addWatchCommand(CLI::App& app);
 

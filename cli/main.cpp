@@ -1,4 +1,4 @@
-// imucal: field calibration of consumer MEMS IMUs (simulate, calibrate, Monte Carlo study, bound, diagnose).
+// imucal: field calibration of consumer MEMS IMUs (simulate, calibrate, Monte Carlo study, bound, plan, diagnose).
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
   imucal::cli::addCalibrateCommand(app);
   imucal::cli::addMonteCarloCommand(app);
   imucal::cli::addBoundCommand(app);
+  imucal::cli::addPlanCommand(app);
   imucal::cli::addDiagnoseCommand(app);
   imucal::cli::addWatchCommand(app);
   try {

@@ -19,7 +19,10 @@ FilterConfig filterMatchingSimulation(const sim::SimConfig& sim, FilterConfig ba
   base.measurements.heading = sim.heading.enabled;
   if (sim.heading.enabled) base.measurements.heading_sigma = sim.heading.noise;
   base.measurements.heading_latency = sim.heading.latency;
+  // The simulated world, except a gravity value the calibration config gives: what the user knows.
+  const double given_gravity = base.earth.measured_gravity;
   base.earth = sim.earth;
+  if (given_gravity > 0.0) base.earth.measured_gravity = given_gravity;
   return base;
 }
 

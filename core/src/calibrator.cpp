@@ -135,45 +135,25 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   return out;
 }
 
-// A parameter most of whose variance is that of parameters the data did not settle, and which would miss
-// the convergence threshold if their priors were twice as wide (the accelerometer z bias beside the z
-// scale on a level turn), is known only in a combination with them: not converged, and the combination is
-// reported instead. One whose sigma stays far below the threshold either way keeps its verdict.
+// A confounded parameter (see combinations.hpp) is not converged: the combination is reported instead. One
+// whose sigma stays far below the threshold either way keeps its verdict.
 void markConfounded(CalibrationResult& result, std::vector<int>& unconverged, double sigma_ratio) {
-  if (unconverged.empty()) return;
-  const auto m = static_cast<Eigen::Index>(unconverged.size());
-  MatX puu(m, m);
-  for (Eigen::Index a = 0; a < m; ++a)
-    for (Eigen::Index b = 0; b < m; ++b)
-      puu(a, b) = result.covariance(unconverged[static_cast<std::size_t>(a)], unconverged[static_cast<std::size_t>(b)]);
-  const Eigen::LDLT<MatX> solver(puu);
-  if (solver.info() != Eigen::Success) return;
-  std::vector<int> confounded;
-  for (int j = 0; j < static_cast<int>(result.converged.size()); ++j) {
-    if (!result.converged[static_cast<std::size_t>(j)]) continue;
-    VecX pju(m);
-    for (Eigen::Index a = 0; a < m; ++a) pju(a) = result.covariance(j, unconverged[static_cast<std::size_t>(a)]);
-    const VecX weights = solver.solve(pju);
-    const double share = pju.dot(weights) / result.covariance(j, j);
-    if (!(share > 0.5)) continue;
-    const double var_doubled = result.covariance(j, j) * ((1.0 - share) + 4.0 * share);
-    if (std::sqrt(var_doubled) <= sigma_ratio * result.prior_sigma(j)) continue;
-    // Name the unconverged parameters that explain the most of it.
+  std::vector<int> converged;
+  for (int j = 0; j < static_cast<int>(result.converged.size()); ++j)
+    if (result.converged[static_cast<std::size_t>(j)]) converged.push_back(j);
+  const std::vector<ConfoundedParameter> found =
+      confoundedParameters(result.covariance, result.prior_sigma, converged, unconverged, sigma_ratio);
+  for (const ConfoundedParameter& c : found) {
     std::string with;
-    for (Eigen::Index a = 0; a < m; ++a) {
-      const double part = pju(a) * weights(a) / result.covariance(j, j);
-      if (part < 0.1) continue;
-      with += (with.empty() ? "" : ", ") + result.names[static_cast<std::size_t>(unconverged[static_cast<std::size_t>(a)])];
-    }
-    result.converged[static_cast<std::size_t>(j)] = false;
-    result.convergence_time(j) = std::numeric_limits<double>::quiet_NaN();
+    for (int k : c.with) with += (with.empty() ? "" : ", ") + result.names[static_cast<std::size_t>(k)];
+    result.converged[static_cast<std::size_t>(c.index)] = false;
+    result.convergence_time(c.index) = std::numeric_limits<double>::quiet_NaN();
     std::ostringstream reason;
-    reason << kConfoundedPrefix << (with.empty() ? "unconverged parameters" : with) << " (" << static_cast<int>(share * 100.0 + 0.5)
-           << " % of its variance is theirs)";
-    result.not_converged_reason[static_cast<std::size_t>(j)] = reason.str();
-    confounded.push_back(j);
+    reason << kConfoundedPrefix << (with.empty() ? "unconverged parameters" : with) << " ("
+           << static_cast<int>(c.share * 100.0 + 0.5) << " % of its variance is theirs)";
+    result.not_converged_reason[static_cast<std::size_t>(c.index)] = reason.str();
+    unconverged.push_back(c.index);
   }
-  unconverged.insert(unconverged.end(), confounded.begin(), confounded.end());
   std::sort(unconverged.begin(), unconverged.end());
 }
 

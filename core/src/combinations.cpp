@@ -1,5 +1,6 @@
 #include "imucal/core/combinations.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <cmath>
 
@@ -53,6 +54,35 @@ std::vector<ParamCombination> determinedCombinations(const std::vector<std::stri
     comb.value = value;
     comb.prior_sigma = 1.0 / std::abs(lead_coeff);
     out.push_back(comb);
+  }
+  return out;
+}
+
+std::vector<ConfoundedParameter> confoundedParameters(const Eigen::MatrixXd& cov, const VecX& prior_sigma,
+                                                      const std::vector<int>& determined, const std::vector<int>& open,
+                                                      double sigma_ratio) {
+  std::vector<ConfoundedParameter> out;
+  if (open.empty()) return out;
+  const auto m = static_cast<Eigen::Index>(open.size());
+  Eigen::MatrixXd puu(m, m);
+  for (Eigen::Index a = 0; a < m; ++a)
+    for (Eigen::Index b = 0; b < m; ++b) puu(a, b) = cov(open[static_cast<std::size_t>(a)], open[static_cast<std::size_t>(b)]);
+  const Eigen::LDLT<Eigen::MatrixXd> solver(puu);
+  if (solver.info() != Eigen::Success) return out;
+  for (int j : determined) {
+    VecX pju(m);
+    for (Eigen::Index a = 0; a < m; ++a) pju(a) = cov(j, open[static_cast<std::size_t>(a)]);
+    const VecX weights = solver.solve(pju);
+    const double share = pju.dot(weights) / cov(j, j);
+    if (!(share > 0.5)) continue;
+    const double var_doubled = cov(j, j) * ((1.0 - share) + 4.0 * share);
+    if (std::sqrt(var_doubled) <= sigma_ratio * prior_sigma(j)) continue;
+    ConfoundedParameter c;
+    c.index = j;
+    c.share = share;
+    for (Eigen::Index a = 0; a < m; ++a)
+      if (pju(a) * weights(a) / cov(j, j) >= 0.1) c.with.push_back(open[static_cast<std::size_t>(a)]);
+    out.push_back(c);
   }
   return out;
 }

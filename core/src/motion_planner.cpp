@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "imucal/core/calibrator.hpp"
+#include "imucal/core/observability.hpp"
 #include "imucal/core/param_registry.hpp"
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/state_layout.hpp"
@@ -87,15 +87,20 @@ MotionAdvice planNextMotion(const std::vector<std::string>& names, const MatX& c
   if (layout.paramNames() != names || covariance.rows() != layout.paramCount() || prior_sigma.size() != layout.paramCount())
     throw std::invalid_argument("planNextMotion: the calibration's parameters are not those of the config's model");
   const double ratio = config.converged_sigma_ratio;
-  // As the calibrator calls a parameter converged: sigma well below the prior, and not mostly gravity's.
-  const auto determined = [&](const MatX& cov, int j) {
-    return std::sqrt(cov(j, j)) <= ratio * prior_sigma(j) && !limitedByGravity(cov, layout, j);
+  const VecX no_estimate = VecX::Zero(layout.paramCount());
+  // Judged as `imucal plan` and the calibrator judge them: determined, not gravity's, not confounded.
+  const auto determined = [&](const MatX& cov) {
+    std::vector<bool> out;
+    for (const ParameterObservability& p : assessObservability(layout, cov, prior_sigma, no_estimate, ratio).parameters)
+      out.push_back(p.verdict == Observability::Determined);
+    return out;
   };
   MotionAdvice advice;
   std::vector<int> unknown;
+  const std::vector<bool> now = determined(covariance);
   for (int j = 0; j < layout.paramCount(); ++j) {
     if (layout.mode(layout.params()[static_cast<std::size_t>(j)].block) != BlockMode::Estimate) continue;
-    if (!determined(covariance, j)) {
+    if (!now[static_cast<std::size_t>(j)]) {
       unknown.push_back(j);
       advice.unknown.push_back(names[static_cast<std::size_t>(j)]);
     }
@@ -119,8 +124,9 @@ MotionAdvice planNextMotion(const std::vector<std::string>& names, const MatX& c
     int count = 0;
     double gain = 0.0;
     std::vector<bool> revealed;
+    const std::vector<bool> then = determined(after);
     for (int j : unknown) {
-      const bool r = determined(after, j);
+      const bool r = then[static_cast<std::size_t>(j)];
       revealed.push_back(r);
       count += r ? 1 : 0;
       gain += std::log(std::sqrt(covariance(j, j)) / b.sigma(j));

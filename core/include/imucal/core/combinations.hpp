@@ -26,4 +26,18 @@ std::vector<ParamCombination> determinedCombinations(const std::vector<std::stri
                                                      const Eigen::MatrixXd& covariance, const VecX& prior_sigma,
                                                      const std::vector<int>& candidates, double sigma_ratio);
 
+// A parameter most of whose variance is that of parameters the data did not settle, and which would miss
+// the convergence threshold if their priors were twice as wide (the accelerometer z bias beside the z
+// scale on a level turn), is known only in a combination with them.
+struct ConfoundedParameter {
+  int index = -1;
+  double share = 0.0;    // of its variance that is theirs
+  std::vector<int> with; // those explaining a tenth of it or more
+};
+// determined: indices that met the threshold; open: estimated ones that did not. Returns those of
+// `determined` that are confounded, in their order.
+std::vector<ConfoundedParameter> confoundedParameters(const Eigen::MatrixXd& covariance, const VecX& prior_sigma,
+                                                      const std::vector<int>& determined, const std::vector<int>& open,
+                                                      double sigma_ratio);
+
 }  // namespace imucal

@@ -36,7 +36,7 @@ std::vector<TrajectoryPoint> motionTrajectory(const CandidateMotion& motion, con
 Vec3 downAxisAfterTip(const CandidateMotion& motion);
 
 struct MotionAdvice {
-  std::vector<std::string> unknown;     // estimated parameters with sigma above converged_sigma_ratio of prior
+  std::vector<std::string> unknown;     // estimated parameters not determined alone (observability.hpp)
   std::string motion_id, words;         // the best candidate; empty when nothing is unknown or none helps
   std::vector<std::string> revealed;    // unknown ones it would determine
   std::vector<std::string> left;        // unknown ones it would not

@@ -21,5 +21,7 @@ ParamUnit paramUnit(const std::string& name);
 // "accel_bias_z - 1.00 accel_scale_z = -2510 +- 40 ug (prior +- 80000)": coefficients in human units (the
 // lead's unit per unit of each term), value in the lead's.
 std::string combinationText(const ParamCombination& c);
+// Its left side alone: "accel_bias_z - 1.00 accel_scale_z".
+std::string combinationTerms(const ParamCombination& c);
 
 }  // namespace imucal::io
