@@ -80,7 +80,9 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
     std::cout << '\n';
   }
   std::cout << "passes " << r.passes_run << ", heading updates " << r.stats.heading_updates << " (rejected "
-            << r.stats.heading_rejected << ", mean NIS " << std::setprecision(2) << r.stats.heading_nis_mean
+            << r.stats.heading_rejected << (r.stats.heading_steep > 0 ? ", " + std::to_string(r.stats.heading_steep) +
+                                               " not used, the x axis too steep" : std::string())
+            << ", mean NIS " << std::setprecision(2) << r.stats.heading_nis_mean
             << "), zero-velocity mean NIS " << r.stats.velocity_nis_mean << '\n';
   for (const ParamCombination& c : r.combinations) std::cout << "determined only together: " << io::combinationText(c) << '\n';
 }

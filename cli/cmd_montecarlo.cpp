@@ -8,7 +8,11 @@
 #include "imucal/io/atomic_file.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/sim/montecarlo.hpp"
+#include "imucal/io/sim_formats.hpp"
+#include "imucal/sim/motion_study.hpp"
 #include "montecarlo_report.hpp"
+#include "motion_study_report.hpp"
+#include "sim_filter_settings.hpp"
 
 namespace imucal::cli {
 
@@ -16,6 +20,7 @@ namespace {
 
 struct MonteCarloArgs {
   std::string scenario = "paper";
+  std::string sim_config;
   int runs = 50;
   std::uint64_t seed = 1;
   int threads = 0;
@@ -25,19 +30,7 @@ struct MonteCarloArgs {
   bool no_plain = false;
 };
 
-void runMonteCarloCommand(const MonteCarloArgs& args) {
-  if (args.scenario != "paper") {
-    throw std::invalid_argument("--scenario: unknown scenario '" + args.scenario + "' (available: paper)");
-  }
-  if (args.runs < 2) throw std::invalid_argument("--runs: need at least 2 runs for statistics");
-  sim::MonteCarloOptions options;
-  options.runs = args.runs;
-  options.first_seed = args.seed;
-  options.threads = args.threads;
-  options.compare_plain = !args.no_plain;
-  if (!args.config.empty()) options.filter = io::loadCalibrateConfig(args.config).filter;
-  const sim::MonteCarloReport report = sim::runMonteCarlo(options);
-  const std::string md = monteCarloMarkdown(report);
+void writeOutputs(const MonteCarloArgs& args, const std::string& md, const nlohmann::json& json) {
   if (args.out_md.empty()) {
     std::cout << md;
   } else {
@@ -45,9 +38,38 @@ void runMonteCarloCommand(const MonteCarloArgs& args) {
     std::cout << "wrote " << args.out_md << '\n';
   }
   if (!args.out_json.empty()) {
-    io::writeFileAtomically(args.out_json, monteCarloJson(report).dump(2) + "\n");
+    io::writeFileAtomically(args.out_json, json.dump(2) + "\n");
     std::cout << "wrote " << args.out_json << '\n';
   }
+}
+
+// Any simulated motion through the calibration a user would run on it (--config), against its bound.
+void runMotionStudyCommand(const MonteCarloArgs& args) {
+  const sim::SimConfig sim = io::loadSimConfig(args.sim_config);
+  sim::MotionStudyOptions options;
+  options.runs = args.runs;
+  options.first_seed = args.seed;
+  options.threads = args.threads;
+  if (!args.config.empty()) options.filter = io::loadCalibrateConfig(args.config).filter;
+  options.bound_filter = filterMatchingSimulation(sim, options.filter);
+  const sim::MotionStudyReport report = sim::runMotionStudy(sim, options);
+  writeOutputs(args, motionStudyMarkdown(report, args.sim_config), motionStudyJson(report));
+}
+
+void runMonteCarloCommand(const MonteCarloArgs& args) {
+  if (args.runs < 2) throw std::invalid_argument("--runs: need at least 2 runs for statistics");
+  if (!args.sim_config.empty()) return runMotionStudyCommand(args);
+  if (args.scenario != "paper") {
+    throw std::invalid_argument("--scenario: unknown scenario '" + args.scenario + "' (available: paper)");
+  }
+  sim::MonteCarloOptions options;
+  options.runs = args.runs;
+  options.first_seed = args.seed;
+  options.threads = args.threads;
+  options.compare_plain = !args.no_plain;
+  if (!args.config.empty()) options.filter = io::loadCalibrateConfig(args.config).filter;
+  const sim::MonteCarloReport report = sim::runMonteCarlo(options);
+  writeOutputs(args, monteCarloMarkdown(report), monteCarloJson(report));
 }
 
 }  // namespace
@@ -56,7 +78,10 @@ void addMonteCarloCommand(CLI::App& app) {
   auto args = std::make_shared<MonteCarloArgs>();
   CLI::App* cmd = app.add_subcommand("montecarlo", "Monte Carlo study of the paper's experiment against the bound");
   cmd->add_option("--scenario", args->scenario, "Scenario (paper)")->capture_default_str();
-  cmd->add_option("--runs", args->runs, "Runs per heading case")->capture_default_str();
+  cmd->add_option("--sim-config", args->sim_config,
+                  "Instead of the paper study: this simulated motion (YAML), calibrated with --config, against its bound")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--runs", args->runs, "Runs per heading case (or of the --sim-config motion)")->capture_default_str();
   cmd->add_option("--seed", args->seed, "First seed; run i uses seed + i")->capture_default_str();
   cmd->add_option("--threads", args->threads, "Worker threads (0 = all cores)")->capture_default_str();
   cmd->add_option("--config", args->config, "Calibration config (YAML) for the filter settings")->check(CLI::ExistingFile);

@@ -146,6 +146,8 @@ MatX blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value) {
 
 double headingOf(const Mat3& c_bn) { return std::atan2(c_bn(1, 0), c_bn(0, 0)); }
 
+bool headingDefined(const Mat3& c, double max_elevation) { return std::abs(c(2, 0)) <= std::sin(max_elevation); }
+
 void headingJacobian(const Mat3& c, const StateLayout& layout, StateVec& h) {
   // d(heading)/d(phi) for C_true = (I + [phi x]) C; see tests for the numerical check.
   h.setZero(layout.size);

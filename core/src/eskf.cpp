@@ -204,9 +204,13 @@ double Eskf::updateDeviceMinusCentre(int channel, int device_index, int centre_i
   return nis;
 }
 
-Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double gate_sigma) {
+Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double gate_sigma, double max_elevation) {
   HeadingOutcome out;
   const Mat3 c = nav_.q_nb.toRotationMatrix();
+  if (!headingDefined(c, max_elevation)) {
+    out.undefined = true;
+    return out;
+  }
   headingJacobian(c, layout_, h_);
   const double y = wrapAngle(heading - headingOf(c)) - h_.dot(dx_);
   const double r = sigma * sigma;

@@ -30,7 +30,11 @@ void FilterStepper::flush() {
 }
 
 void FilterStepper::applyHeading(double value) {
-  const auto r = filter_.updateHeading(value, m_.heading_sigma, m_.heading_gate_sigma);
+  const auto r = filter_.updateHeading(value, m_.heading_sigma, m_.heading_gate_sigma, m_.heading_max_elevation);
+  if (r.undefined) {
+    ++stats_.heading_steep;
+    return;
+  }
   if (r.accepted) {
     ++stats_.heading_updates;
     heading_nis_sum_ += r.nis;

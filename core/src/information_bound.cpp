@@ -86,7 +86,9 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
       dynamics.propagate(P, lin, th - t);
       t = th;
       const double w = (th - traj[first].t) / (traj[k].t - traj[first].t);
-      headingJacobian(traj[first].q_nb.slerp(w, traj[k].q_nb).toRotationMatrix(), layout, hrow);
+      const Mat3 c_heading = traj[first].q_nb.slerp(w, traj[k].q_nb).toRotationMatrix();
+      if (!headingDefined(c_heading, m.heading_max_elevation)) continue;  // as the filter: not used there
+      headingJacobian(c_heading, layout, hrow);
       josephScalarUpdate(P, hrow, m.heading_sigma * m.heading_sigma, K, s, mask);
     }
     if (traj[k].t > t) dynamics.propagate(P, lin, traj[k].t - t);

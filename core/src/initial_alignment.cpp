@@ -109,10 +109,12 @@ InitialAlignment alignInitialState(const std::vector<ImuSample>& imu, const std:
 
   InitialAlignment out;
   const double lat = config.measurements.heading_latency;
+  // Standing on its nose or tail, the start has no heading (see heading_max_elevation): yaw from the prior.
+  const bool heading_usable = std::abs(level.y()) <= config.measurements.heading_max_elevation;
   double sin_sum = 0.0, cos_sum = 0.0;
   std::size_t i = 0;
   while (i < heading.size() && heading[i].t - lat <= t_end) {
-    if (heading[i].t - lat >= t0) {
+    if (heading_usable && heading[i].t - lat >= t0) {
       sin_sum += std::sin(heading[i].heading);
       cos_sum += std::cos(heading[i].heading);
       ++out.heading_samples_used;

@@ -108,6 +108,8 @@ HeadingCsvFormat readHeadingSection(YamlSection s, MeasurementConfig& m) {
   m.heading_sigma = s.number("sigma_deg", m.heading_sigma / deg, Range::positive()) * deg;
   m.heading_latency = s.number("latency_ms", m.heading_latency * 1e3) * 1e-3;
   m.heading_gate_sigma = s.number("gate_sigma", m.heading_gate_sigma, Range::nonNegative());
+  m.heading_max_elevation =
+      s.number("max_elevation_deg", m.heading_max_elevation / deg, Range::between(0.0, 90.0)) * deg;
   s.finish();
   return f;
 }

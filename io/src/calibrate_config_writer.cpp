@@ -54,6 +54,7 @@ void emitHeading(YAML::Emitter& out, const HeadingCsvFormat& f, const Measuremen
   emitNumber(out, "sigma_deg", m.heading_sigma / deg);
   emitNumber(out, "latency_ms", m.heading_latency * 1e3);
   emitNumber(out, "gate_sigma", m.heading_gate_sigma);
+  emitNumber(out, "max_elevation_deg", m.heading_max_elevation / deg);
   out << YAML::EndMap;
 }
 

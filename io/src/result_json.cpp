@@ -59,6 +59,7 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
                 {"position_updates", s.position_updates},
                 {"heading_updates", s.heading_updates},
                 {"heading_rejected", s.heading_rejected},
+                {"heading_steep", s.heading_steep},
                 {"heading_nis_mean", numberOrNull(s.heading_nis_mean)},
                 {"velocity_nis_mean", numberOrNull(s.velocity_nis_mean)}}},
               {"log_likelihood", numberOrNull(result.log_likelihood)},

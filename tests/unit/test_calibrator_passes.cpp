@@ -50,9 +50,9 @@ PassesRun threeAxis(int passes, std::uint64_t seed = 15, bool latitude_given = f
 }
 
 TEST(CalibratorPasses, WhatThePassesStillMovedWhenTheyRanOutIsNotCalledConverged) {
-  const PassesRun cut = threeAxis(3);
+  const PassesRun cut = threeAxis(2);
   const PassesRun full = threeAxis(20);
-  ASSERT_EQ(cut.result.passes_run, 3);
+  ASSERT_EQ(cut.result.passes_run, 2);
   ASSERT_LT(full.result.passes_run, 20) << "the reference run must settle";
   int unsettled = 0, far_cut = 0;
   for (std::size_t j = 0; j < cut.result.names.size(); ++j) {
@@ -71,13 +71,15 @@ TEST(CalibratorPasses, WhatThePassesStillMovedWhenTheyRanOutIsNotCalledConverged
       EXPECT_LT(std::abs(full.z(k)), 4.0) << full.result.names[j];
     }
   }
-  // The cut run's estimates are off where they had not settled (that is what the flag is for), and the
-  // settled run has no such flag.
-  EXPECT_GE(far_cut, 1);
+  // Two passes leave many parameters moving by more than the settling step: each is flagged, not called
+  // converged, and any estimate the cut run left beyond 4 sigma is among them. (With the headings of the
+  // near-vertical stretches of the pitch turns used, the cut run was far off; those are no longer used.)
+  // The settled run has no such flag.
+  EXPECT_GE(unsettled, 5);
   EXPECT_GE(unsettled, far_cut);
   for (const auto& reason : full.result.not_converged_reason) EXPECT_NE(reason.rfind(kUnsettledPrefix, 0), 0u) << reason;
   bool warned = false;
-  for (const auto& w : cut.result.warnings) warned = warned || w.rfind("passes: all 3 ran", 0) == 0;
+  for (const auto& w : cut.result.warnings) warned = warned || w.rfind("passes: all 2 ran", 0) == 0;
   EXPECT_TRUE(warned);
 }
 

@@ -253,6 +253,41 @@ TEST(Eskf, HeadingGateRejectsTenSigmaAndKeepsState) {
   EXPECT_TRUE(g.updateHeading(0.3 + 10.0 * std::sqrt(s), sigma, 0.0).accepted);
 }
 
+// A filter at rest with the given pitch (nose up positive) and yaw.
+Eskf pitchedFilter(double pitch, double yaw, double yaw_variance) {
+  FilterConfig cfg;
+  Eskf f(cfg);
+  NavState nav;
+  nav.q_nb = eulerToQuat(0.0, pitch, yaw);
+  f.initialize(ImuSample{}, nav, VecX::Zero(6), priorCovariance(cfg, f.layout(), yaw_variance));
+  return f;
+}
+
+TEST(Eskf, HeadingIsNotUsedWithTheNoseSteeperThanItsLimit) {
+  // The body x axis at pitch p has elevation p: C_bn(2, 0) = -sin p for roll 0 (ZYX Euler).
+  EXPECT_TRUE(headingDefined(eulerToQuat(0.0, 59.0 * kDeg, 0.4).toRotationMatrix(), 60.0 * kDeg));
+  EXPECT_FALSE(headingDefined(eulerToQuat(0.0, 61.0 * kDeg, 0.4).toRotationMatrix(), 60.0 * kDeg));
+  EXPECT_FALSE(headingDefined(eulerToQuat(0.0, -61.0 * kDeg, 0.4).toRotationMatrix(), 60.0 * kDeg));
+  // Rolled onto its side the x axis stays level: the heading is defined.
+  EXPECT_TRUE(headingDefined(eulerToQuat(90.0 * kDeg, 0.0, 0.4).toRotationMatrix(), 60.0 * kDeg));
+
+  // Straight up the azimuth of x is 0/0: without the limit the innovation was NaN.
+  const double var = std::pow(10.0 * kDeg, 2);
+  Eskf up = pitchedFilter(90.0 * kDeg, 0.3, var);
+  const StateMat P_before = up.covariance();
+  const Eskf::HeadingOutcome o = up.updateHeading(0.3, 5.0 * kDeg, 0.0, 60.0 * kDeg);
+  EXPECT_TRUE(o.undefined);
+  EXPECT_FALSE(o.accepted);
+  EXPECT_EQ((up.covariance() - P_before).cwiseAbs().maxCoeff(), 0.0);
+
+  // At 50 deg pitch the heading is used, with the tilted row of headingJacobian: the yaw variance drops.
+  Eskf tilted = pitchedFilter(50.0 * kDeg, 0.3, var);
+  const Eskf::HeadingOutcome used = tilted.updateHeading(0.3 + 1.0 * kDeg, 5.0 * kDeg, 0.0, 60.0 * kDeg);
+  EXPECT_TRUE(used.accepted);
+  EXPECT_FALSE(used.undefined);
+  EXPECT_LT(tilted.covariance()(L::kAtt + 2, L::kAtt + 2), var);
+}
+
 TEST(Eskf, FeedbackOffMatchesFeedbackOnOnNoiseFreeData) {
   // Paper motion, noise-free IMU and heading, both runs started from parameters a little off the truth
   // (1-3 mg, 10-30 deg/h, as a refinement pass would be). Closed loop re-linearizes every step; open loop

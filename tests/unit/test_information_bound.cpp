@@ -148,6 +148,28 @@ TEST(InformationBound, ModelledCentreMotionLosesInformationAndMatchesTheFilter) 
   }
 }
 
+TEST(InformationBound, StandingOnItsNoseHeadingsAreNotUsed) {
+  // Still on its nose (pitch 90 deg): the azimuth of the body x axis is undefined, so every heading is
+  // skipped (the filter does the same) and the bound equals the one without a heading sensor: finite,
+  // the now vertical gyro x bias left at its prior, the level y and z ones told by the tilt.
+  sim::SimConfig c = sim::paperScenario(5.0 * units::deg, true, 1);
+  c.motion.segments = {{sim::SegmentKind::Still, 20.0, Vec3::UnitZ(), 0.0, sim::RateProfile::RaisedCosine}};
+  c.motion.initial_euler = Vec3(0.0, 90.0 * units::deg, 30.0 * units::deg);
+  const sim::SimOutput out = sim::simulate(c, 1);
+  std::vector<double> heading_times;
+  for (const auto& h : out.heading) heading_times.push_back(h.t);
+  ASSERT_EQ(heading_times.size(), 2001u);
+  const FilterConfig cfg = withSimulatedGravity();
+  const BoundResult with = informationBound(sim::toTrajectory(out.truth), heading_times, cfg);
+  const BoundResult without = informationBound(sim::toTrajectory(out.truth), {}, cfg);
+  ASSERT_TRUE(with.sigma.allFinite()) << with.sigma.transpose();
+  EXPECT_EQ((with.sigma - without.sigma).cwiseAbs().maxCoeff(), 0.0);
+  const double prior = cfg.model[ParamBlock::GyroBias].sigma;
+  EXPECT_NEAR(with.sigma(3), prior, 1e-3 * prior);
+  EXPECT_LT(with.sigma(4), 0.1 * prior);
+  EXPECT_LT(with.sigma(5), 0.1 * prior);
+}
+
 TEST(InformationBound, RejectsTooShortTrajectory) {
   EXPECT_THROW(informationBound({TrajectoryPoint{}}, {}, FilterConfig{}), std::invalid_argument);
 }

@@ -240,6 +240,7 @@ heading:
   sigma_deg: 2
   latency_ms: 30
   gate_sigma: 4
+  max_elevation_deg: 55
 magnetometer:
   columns: {time: tm, field: [m1, m2, m3]}
   time_unit: ms
@@ -319,6 +320,7 @@ TEST(IoConfig, CalibrateConfigConvertsEveryKey) {
   EXPECT_DOUBLE_EQ(f.measurements.heading_sigma, 2 * deg);
   EXPECT_DOUBLE_EQ(f.measurements.heading_latency, 0.03);
   EXPECT_EQ(f.measurements.heading_gate_sigma, 4.0);
+  EXPECT_DOUBLE_EQ(f.measurements.heading_max_elevation, 55 * deg);
   EXPECT_DOUBLE_EQ(f.noise.accel_white, 0.2 / 60);
   EXPECT_DOUBLE_EQ(f.noise.gyro_white, 0.5 * deg / 60);
   EXPECT_DOUBLE_EQ(f.noise.accel_bias_walk, 3e-6 * g);
@@ -394,6 +396,7 @@ TEST(IoConfig, CalibrateConfigErrorsNameLineAndKey) {
                        ":4: imu.columns.gyro: column 'ay' is used for both accel y and gyro y");
   expectCalibrateError("heading:\n  sigma_deg: 0\n", ":2: heading.sigma_deg: must be > 0 (got 0)");
   expectCalibrateError("heading:\n  gate_sigma: -3\n", ":2: heading.gate_sigma: must be >= 0 (got -3)");
+  expectCalibrateError("heading:\n  max_elevation_deg: 95\n", ":2: heading.max_elevation_deg: must be");
   expectCalibrateError("noise:\n  arw_deg_per_sqrt_h: 0\n", ":2: noise.arw_deg_per_sqrt_h: must be > 0");
   expectCalibrateError("prior:\n  tilt_deg: -5\n", ":2: prior.tilt_deg: must be > 0 (got -5)");
   expectCalibrateError("measurements:\n  zero_velocity: 1\n",

@@ -74,6 +74,8 @@ auto centreAcceleration(double omega, const Eigen::MatrixBase<D>& d, const Eigen
 // Heading (yaw of C_bn) and its Jacobian row with respect to the error state (correct when tilted).
 double headingOf(const Mat3& c_bn);
 void headingJacobian(const Mat3& c_bn, const StateLayout& layout, StateVec& h);
+// Whether the heading is usable in this attitude: the body x axis at most max_elevation from level.
+bool headingDefined(const Mat3& c_bn, double max_elevation);
 
 // Joseph-form update of P with one scalar measurement row h, noise variance r. Returns the gain K and
 // the innovation variance s. Symmetrizes P. With a mask, the gain of every state whose entry is 0 (a

@@ -38,11 +38,14 @@ class Eskf {
 
   struct HeadingOutcome {
     bool accepted = false;
+    bool undefined = false;   // the body x axis was steeper than max_elevation: not used
     double innovation = 0.0;  // rad, wrapped
     double nis = 0.0;
   };
-  // Heading (rad, clockwise from north) with 1-sigma; gate_sigma > 0 rejects larger innovations.
-  HeadingOutcome updateHeading(double heading, double sigma, double gate_sigma = 0.0);
+  // Heading (rad, clockwise from north) with 1-sigma; gate_sigma > 0 rejects larger innovations; not used
+  // where the body x axis is steeper than max_elevation (see MeasurementConfig).
+  HeadingOutcome updateHeading(double heading, double sigma, double gate_sigma = 0.0,
+                               double max_elevation = MeasurementConfig{}.heading_max_elevation);
 
   // Feeds the accumulated error state into the nominal state and resets it. Without feedback (see
   // setFeedback) the error state is kept and propagated instead.

@@ -59,6 +59,10 @@ struct MeasurementConfig {
   double heading_bias = 0.0;           // rad, subtracted from heading values (see heading_model.hpp)
   // Heading innovations beyond this many sigma are rejected (a magnetometer near iron).
   double heading_gate_sigma = 0.0;     // 0 = no gate
+  // The heading is the azimuth of the body x axis: with that axis steeper than this (the device stood on
+  // its nose or tail) it is undefined or swings with every tilt error, so such headings are not used. The
+  // attitude turned about the vertical there still shows up as tilt once the device is laid down again.
+  double heading_max_elevation = 60.0 * 3.14159265358979323846 / 180.0;  // rad
   CentreMotionConfig centre_motion;
 };
 

@@ -20,6 +20,7 @@ struct MeasurementStats {
   long heading_updates = 0;
   long heading_rejected = 0;      // failed the innovation gate
   long heading_late = 0;          // arrived for a time the filter had already passed: not used
+  long heading_steep = 0;         // the body x axis too steep for a heading (heading_max_elevation): not used
   double heading_nis_mean = 0.0;  // mean normalized innovation squared (1 when consistent)
   double velocity_nis_mean = 0.0; // per component
 };

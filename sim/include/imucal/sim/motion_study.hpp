@@ -1,0 +1,41 @@
+#pragma once
+// Many seeded runs of one simulated motion through the calibration a user would run on it: per parameter,
+// the information bound, the error RMS against the truth, the sigma the filter reported, the RMS of
+// error / sigma (1 when the sigmas are honest) and how often it was called converged.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "imucal/core/filter_config.hpp"
+#include "imucal/sim/simulator.hpp"
+
+namespace imucal::sim {
+
+struct MotionStudyOptions {
+  int runs = 50;
+  std::uint64_t first_seed = 1;
+  int threads = 0;           // 0 = all cores
+  FilterConfig filter;       // what calibrate runs with (noise measured on the stills unless pinned)
+  FilterConfig bound_filter; // the same model told the simulation's true noise: for the bound
+};
+
+struct MotionStudyParam {
+  std::string name;
+  double bound = 0.0;              // SI, 1-sigma
+  double error_rms = 0.0;          // SI
+  double sigma_rms = 0.0;          // SI, RMS of the reported sigmas
+  double z_rms = 0.0;              // RMS of (estimate - truth) / sigma
+  double z_worst = 0.0;            // largest |(estimate - truth) / sigma|
+  double converged_fraction = 0.0;
+};
+
+struct MotionStudyReport {
+  int runs = 0;
+  double duration = 0.0;           // s of motion
+  std::vector<MotionStudyParam> params;  // state order
+  std::vector<double> run_z_rms;   // per run, RMS of error / sigma over every parameter
+};
+
+MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions& options);
+
+}  // namespace imucal::sim
