@@ -12,9 +12,12 @@
 #include "recording_input.hpp"
 #include "imucal/core/calibrator.hpp"
 #include "imucal/core/consistency.hpp"
+#include "imucal/core/standard_intrinsics.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
+#include "imucal/io/atomic_file.hpp"
 #include "imucal/io/errors.hpp"
+#include "imucal/io/intrinsics_output.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/io/param_units.hpp"
 
@@ -28,6 +31,8 @@ struct CalibrateArgs {
   std::string out;
   std::string history;
   std::string truth;
+  std::string intrinsics;
+  std::string kalibr;
 };
 
 // Truth values (SI) by parameter name from a truth.json written by `imucal simulate`.
@@ -127,6 +132,23 @@ void runCalibrateCommand(const CalibrateArgs& args) {
   }
   io::writeJsonFile(args.out, json);
   if (!args.history.empty()) io::writeHistoryCsv(args.history, result);
+  if (!args.intrinsics.empty() || !args.kalibr.empty()) {
+    const IntrinsicsWithSigma intrinsics =
+        intrinsicsWithSigma(result.layout, effectiveConfig(config.filter).model, result.estimate, result.covariance);
+    if (!args.intrinsics.empty()) {
+      nlohmann::json j = io::intrinsicsJson(result, intrinsics);
+      j["refused"] = problems;
+      io::writeJsonFile(args.intrinsics, j);
+      std::cout << "wrote " << args.intrinsics << '\n';
+    }
+    if (!args.kalibr.empty()) {
+      const double span = recording.imu.back().t - recording.imu.front().t;
+      const double rate = recording.clock.valid ? recording.clock.rate
+                                                : static_cast<double>(recording.imu.size() - 1) / span;
+      io::writeFileAtomically(args.kalibr, io::kalibrImuYaml(result, intrinsics, rate));
+      std::cout << "wrote " << args.kalibr << '\n';
+    }
+  }
 
   nlohmann::json truth;
   if (!args.truth.empty()) truth = loadTruth(args.truth);
@@ -146,6 +168,9 @@ void addCalibrateCommand(CLI::App& app) {
   cmd->add_option("--config", args->config, "Calibration config (YAML): columns, units, axes, noise, model")->check(CLI::ExistingFile);
   cmd->add_option("--out", args->out, "Result JSON")->required();
   cmd->add_option("--history", args->history, "Also write the estimates over time as CSV (at most 20000 epochs)");
+  cmd->add_option("--intrinsics", args->intrinsics,
+                  "Also write the standard intrinsics (sensor matrices, Kalibr and imu_tk forms, sigmas, correlations) as JSON");
+  cmd->add_option("--kalibr", args->kalibr, "Also write the intrinsics as a Kalibr IMU YAML (scale-misalignment model)");
   cmd->add_option("--truth", args->truth, "truth.json from `imucal simulate`: print the error of each estimate")->check(CLI::ExistingFile);
   cmd->callback([args]() { runCalibrateCommand(*args); });
 }
