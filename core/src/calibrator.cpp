@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "imucal/core/allan.hpp"
+#include "imucal/core/consistency.hpp"
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/filter_stepper.hpp"
@@ -413,6 +414,15 @@ void checkHalves(const std::vector<ImuSample>& imu, const std::vector<HeadingSam
     return;
   }
   if (a.names != result.names || b.names != result.names) return;
+  // A half that could not calibrate alone (its innovations contradict the model: the passes ran away on
+  // too little data for the prior's width) says nothing about the whole's stability.
+  for (const auto& [half, name] : {std::pair{&a, "first"}, std::pair{&b, "second"}}) {
+    const std::vector<std::string> why = inconsistencies(*half);
+    if (why.empty()) continue;
+    result.warnings.push_back(std::string("halves: not compared (the ") + name + " half alone does not fit the model: " +
+                              why.front() + ")");
+    return;
+  }
   result.halves_z = VecX::Zero(result.estimate.size());
   for (Eigen::Index j = 0; j < result.estimate.size(); ++j) {
     const double z = (a.estimate(j) - b.estimate(j)) / std::hypot(a.sigma(j), b.sigma(j));

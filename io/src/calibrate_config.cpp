@@ -64,6 +64,21 @@ void readRetime(YamlSection& s, bool& uniform, bool* automatic = nullptr) {
   if (automatic != nullptr) *automatic = is_auto;
 }
 
+// accel_counts / gyro_counts: {offset: counts, per_unit: counts per accel_unit / gyro_unit}, one number or
+// one per sensor axis.
+RawCounts readRawCounts(YamlSection& parent, const std::string& key) {
+  RawCounts c;
+  if (!parent.has(key)) return c;
+  YamlSection s = parent.section(key);
+  c.enabled = true;
+  c.offset = s.vector3("offset", c.offset, true);
+  if (!s.has("per_unit")) s.fail("per_unit", "is needed: the datasheet's counts per unit (16384 per g, 131 per deg/s...)");
+  c.per_unit = s.vector3("per_unit", c.per_unit, true,
+                         {[](double v) { return std::isfinite(v) && v != 0.0; }, "must be a non-zero number"});
+  s.finish();
+  return c;
+}
+
 ImuCsvFormat readImuFormat(YamlSection s) {
   ImuCsvFormat f;
   YamlSection columns = s.section("columns");
@@ -87,6 +102,8 @@ ImuCsvFormat readImuFormat(YamlSection s) {
   f.time_unit = readUnit(s, "time_unit", f.time_unit, parseTimeUnit, timeUnitChoices());
   f.accel_unit = readUnit(s, "accel_unit", f.accel_unit, parseAccelUnit, accelUnitChoices());
   f.gyro_unit = readUnit(s, "gyro_unit", f.gyro_unit, parseGyroUnit, gyroUnitChoices());
+  f.accel_counts = readRawCounts(s, "accel_counts");
+  f.gyro_counts = readRawCounts(s, "gyro_counts");
   f.accel_axes = readAxes(s, "accel_axes", f.accel_axes);
   f.gyro_axes = readAxes(s, "gyro_axes", f.gyro_axes);
   f.accel_reads_gravity = s.boolean("accel_reads_gravity", f.accel_reads_gravity);
@@ -235,6 +252,14 @@ void readFilter(YamlSection s, FilterConfig& f) {
 CalibrateConfig calibrateConfigFrom(YamlSection top) {
   CalibrateConfig c;
   c.imu = readImuFormat(top.section("imu"));
+  // A triad in raw counts has only the datasheet's sensitivity: its scale factor is estimated from a wide
+  // prior unless the prior and model sections below say otherwise.
+  for (const auto& [counts, block] : {std::pair{c.imu.accel_counts, ParamBlock::AccelScale},
+                                      std::pair{c.imu.gyro_counts, ParamBlock::GyroScale}}) {
+    if (!counts.enabled) continue;
+    c.filter.model[block].sigma = kRawCountScalePrior;
+    c.filter.model.estimate(block);
+  }
   c.heading = readHeadingSection(top.section("heading"), c.filter.measurements);
   readMagnetometer(top.section("magnetometer"), c.mag, c.mag_heading);
   c.filter.noise = readNoise(top.section("noise"), c.filter.noise);

@@ -24,6 +24,17 @@ void emitBool(YAML::Emitter& out, const std::string& key, bool value) {
   out << YAML::Key << key << YAML::Value << value;
 }
 
+void emitRawCounts(YAML::Emitter& out, const std::string& key, const RawCounts& c) {
+  if (!c.enabled) return;
+  out << YAML::Key << key << YAML::Value << YAML::BeginMap;
+  for (const auto& [name, v] : {std::pair{"offset", c.offset}, std::pair{"per_unit", c.per_unit}}) {
+    out << YAML::Key << name << YAML::Value << YAML::Flow << YAML::BeginSeq;
+    for (int i = 0; i < 3; ++i) out << v[i];
+    out << YAML::EndSeq;
+  }
+  out << YAML::EndMap;
+}
+
 void emitImu(YAML::Emitter& out, const ImuCsvFormat& f) {
   out << YAML::Key << "imu" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "columns" << YAML::Value << YAML::BeginMap;
@@ -34,6 +45,8 @@ void emitImu(YAML::Emitter& out, const ImuCsvFormat& f) {
   emitText(out, "time_unit", unitName(f.time_unit));
   emitText(out, "accel_unit", unitName(f.accel_unit));
   emitText(out, "gyro_unit", unitName(f.gyro_unit));
+  emitRawCounts(out, "accel_counts", f.accel_counts);
+  emitRawCounts(out, "gyro_counts", f.gyro_counts);
   emitTexts(out, "accel_axes", f.accel_axes.entries());
   emitTexts(out, "gyro_axes", f.gyro_axes.entries());
   emitBool(out, "accel_reads_gravity", f.accel_reads_gravity);

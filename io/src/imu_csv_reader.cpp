@@ -1,6 +1,10 @@
 #include "imucal/io/csv_reader.hpp"
+
+#include <cmath>
+
 #include "imucal/io/csv_table.hpp"
 #include "imucal/io/errors.hpp"
+#include "imucal/io/number_text.hpp"
 #include "imucal/io/retime.hpp"
 #include "imucal/io/timing_checks.hpp"
 
@@ -17,12 +21,22 @@ std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& f
   // Negating after the axis map is the same as before it: both are linear.
   const double accel_factor = unitFactor(format.accel_unit) * (format.accel_reads_gravity ? -1.0 : 1.0);
   const double gyro_factor = unitFactor(format.gyro_unit);
+  // Counts to the triad's unit; a fraction in a count column is another column or a converted file.
+  const auto triad = [&](std::size_t r, std::size_t first, const RawCounts& counts) {
+    Vec3 v(csv.at(r, first), csv.at(r, first + 1), csv.at(r, first + 2));
+    if (!counts.enabled) return v;
+    for (int i = 0; i < 3; ++i)
+      if (std::floor(v[i]) != v[i])
+        throw InputError(location(path, csv.lines[r]) + ": column '" + names[first + i] + "': " +
+                         formatRounded(v[i]) + " is not a whole count (the config gives this triad in raw counts)");
+    return Vec3((v - counts.offset).cwiseQuotient(counts.per_unit));
+  };
   std::vector<ImuSample> samples(csv.rows());
   for (std::size_t r = 0; r < csv.rows(); ++r) {
     ImuSample& s = samples[r];
     s.t = csv.at(r, 0) * time_factor;
-    s.accel = format.accel_axes.apply(Vec3(csv.at(r, 1), csv.at(r, 2), csv.at(r, 3)) * accel_factor);
-    s.gyro = format.gyro_axes.apply(Vec3(csv.at(r, 4), csv.at(r, 5), csv.at(r, 6)) * gyro_factor);
+    s.accel = format.accel_axes.apply(triad(r, 1, format.accel_counts) * accel_factor);
+    s.gyro = format.gyro_axes.apply(triad(r, 4, format.gyro_counts) * gyro_factor);
   }
   checkImuTiming(samples, format.max_gap, unitName(format.time_unit),
                  [&](std::size_t i) { return location(path, csv.lines[i]); });

@@ -3,10 +3,23 @@
 #include <array>
 #include <string>
 
+#include "imucal/core/types.hpp"
 #include "imucal/io/axis_map.hpp"
 #include "imucal/io/unit_names.hpp"
 
 namespace imucal::io {
+
+// A triad logged as raw register values: value = (count - offset) / per_unit, in the triad's unit
+// (accel_unit, gyro_unit), per sensor axis before the axis map. The counts must be whole numbers.
+struct RawCounts {
+  bool enabled = false;
+  Vec3 offset = Vec3::Zero();    // counts at zero (32768 for an unsigned 16-bit register centred there)
+  Vec3 per_unit = Vec3::Ones();  // the datasheet's nominal sensitivity, counts per accel_unit / gyro_unit
+};
+
+// A sensitivity from the datasheet can be this far off the part's (a wrong full-scale setting is not):
+// the scale factor prior of a triad given in counts, unless the config sets one.
+inline constexpr double kRawCountScalePrior = 0.3;
 
 struct ImuCsvFormat {
   std::string time = "t";
@@ -15,6 +28,7 @@ struct ImuCsvFormat {
   TimeUnit time_unit = TimeUnit::Second;
   AccelUnit accel_unit = AccelUnit::MeterPerSecond2;
   GyroUnit gyro_unit = GyroUnit::RadPerSecond;
+  RawCounts accel_counts, gyro_counts;
   AxisMap accel_axes;  // sensor -> FRD body
   AxisMap gyro_axes;
   // Some boards report +1 g along the axis pointing DOWN (the negative of specific force); the reader
