@@ -123,7 +123,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   };
   record(0);
   for (std::size_t k = 1; k < imu.size(); ++k) {
-    const bool stepped = stepper.addImu(imu[k], k + 1 == imu.size());
+    const bool stepped = stepper.addImu(imu[k], k + 1 == imu.size(), still[k]);
     // NaN never turns finite again, so checking the recorded epochs (always the last) misses none.
     if (stepped && (stepper.steps() % stride == 0 || stepper.steps() == steps)) record(k);
   }

@@ -45,7 +45,7 @@ void FilterStepper::applyHeading(double value) {
   filter_.correct();
 }
 
-bool FilterStepper::addImu(const ImuSample& s, bool end_step) {
+bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool still) {
   const bool last = ++in_step_ == per_step_ || end_step;
   // A heading inside the step splits it: the filter is brought to its time and updated there. One at the
   // step's last sample waits for the pseudo-observations, as at the sample itself.
@@ -67,18 +67,18 @@ bool FilterStepper::addImu(const ImuSample& s, bool end_step) {
   if (!at_sample) pending_.push_back(s);
   previous_ = s;
   if (!last) return false;
-  endStep();
+  endStep(still);
   return true;
 }
 
-void FilterStepper::endStep() {
+void FilterStepper::endStep(bool still) {
   if (!pending_.empty()) flush();
-  if (m_.zero_velocity) {
+  if (m_.zero_velocity && (still || !m_.free_moves)) {
     velocity_nis_sum_ += filter_.updateZeroVelocity(m_.zero_velocity_sigma);
     ++stats_.zero_velocity_updates;
     stats_.velocity_nis_mean = velocity_nis_sum_ / (3.0 * static_cast<double>(stats_.zero_velocity_updates));
   }
-  if (m_.constant_position) {
+  if (m_.constant_position && !m_.free_moves) {
     filter_.updateConstantPosition(Vec3::Zero(), m_.constant_position_sigma);
     ++stats_.position_updates;
   }

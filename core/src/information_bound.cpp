@@ -108,11 +108,11 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
       if (layout.hasCentre()) hrow(layout.centre() + centre_index) = -1.0;
       josephScalarUpdate(P, hrow, sigma * sigma, K, s, mask);
     };
-    if (m.zero_velocity) {
+    if (m.zero_velocity && (traj[k].still || !m.free_moves)) {
       const Mat3 jv = -c * skew(traj[k].w_b);
       for (int i = 0; i < 3; ++i) update(StateLayout::kVel + i, 3 + i, jv, i, m.zero_velocity_sigma);
     }
-    if (m.constant_position) {
+    if (m.constant_position && !m.free_moves) {
       for (int i = 0; i < 3; ++i) update(StateLayout::kPos + i, i, -c, i, m.constant_position_sigma);
     }
     record(traj[k].t);

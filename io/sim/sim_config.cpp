@@ -52,6 +52,7 @@ sim::Segment readSegment(const YAML::Node& item, const std::string& file, const 
     segment.axis = readAxis(s, "axis");
     segment.angle = requiredNumber(s, "angle_deg", Range::any()) * deg;
     segment.duration = requiredNumber(s, "duration_s", Range::positive());
+    segment.translation = s.vector3("translation_m", segment.translation, false, Range::between(-100.0, 100.0));
     const std::string profile = s.text("profile", "raised_cosine");
     if (profile == "raised_cosine") {
       segment.profile = sim::RateProfile::RaisedCosine;

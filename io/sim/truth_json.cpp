@@ -29,6 +29,7 @@ json motionJson(const sim::MotionConfig& m) {
       j["angle_deg"] = s.angle / deg;
       j["angle_rad"] = s.angle;
       j["profile"] = s.profile == sim::RateProfile::RaisedCosine ? "raised_cosine" : "constant";
+      j["translation_m"] = vec(s.translation);
     }
     segments.push_back(j);
   }

@@ -204,6 +204,7 @@ void readMeasurements(YamlSection s, MeasurementConfig& m) {
   c.displacement_sigma = s.number("centre_displacement_mm", c.displacement_sigma * 1e3, Range::positive()) * 1e-3;
   c.frequency = s.number("centre_frequency_hz", c.frequency, Range::positive());
   m.heading = s.boolean("heading", m.heading);
+  m.free_moves = s.boolean("free_moves", m.free_moves);
   s.finish();
 }
 

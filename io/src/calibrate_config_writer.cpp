@@ -123,6 +123,7 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   emitNumber(out, "centre_displacement_mm", f.measurements.centre_motion.displacement_sigma * 1e3);
   emitNumber(out, "centre_frequency_hz", f.measurements.centre_motion.frequency);
   emitBool(out, "heading", f.measurements.heading);
+  emitBool(out, "free_moves", f.measurements.free_moves);
   out << YAML::EndMap;
 
   out << YAML::Key << "model" << YAML::Value << YAML::BeginMap;

@@ -75,12 +75,17 @@ Vec3 jitterOwnRate(const JitterValue& v) { return rightJacobian(v.j) * v.jdot; }
 Motion::Motion(MotionConfig config, EarthModel earth, std::uint64_t jitter_seed)
     : config_(std::move(config)), earth_(earth) {
   Quat q = eulerToQuat(config_.initial_euler.x(), config_.initial_euler.y(), config_.initial_euler.z());
+  Vec3 centre = Vec3::Zero();
   for (const Segment& s : config_.segments) {
     if (!(s.duration > 0.0)) throw std::invalid_argument("motion segment duration must be > 0");
     if (s.kind == SegmentKind::Rotate && !(s.axis.norm() > 0.0))
       throw std::invalid_argument("rotation segment needs a non-zero axis");
+    if (s.kind == SegmentKind::Still && s.translation != Vec3::Zero())
+      throw std::invalid_argument("a still segment cannot carry a translation");
     start_times_.push_back(duration_);
     start_attitudes_.push_back(q);
+    start_positions_.push_back(centre);
+    centre += s.translation;
     duration_ += s.duration;
     if (s.kind == SegmentKind::Rotate)
       q = (q * rotationVectorToQuat(s.axis.normalized() * s.angle)).normalized();
@@ -137,6 +142,7 @@ TruthState Motion::at(double t) const {
 
   Quat q = eulerToQuat(config_.initial_euler.x(), config_.initial_euler.y(), config_.initial_euler.z());
   Vec3 w_motion = Vec3::Zero(), a_motion = Vec3::Zero();
+  Vec3 carried_p = Vec3::Zero(), carried_v = Vec3::Zero(), carried_a = Vec3::Zero();  // the centre, NED
   const int k = segmentAt(tc);
   if (k >= 0) {
     const Segment& seg = config_.segments[static_cast<std::size_t>(k)];
@@ -148,6 +154,13 @@ TruthState Motion::at(double t) const {
       q = q * rotationVectorToQuat(axis * p.angle);
       w_motion = axis * p.rate;
       a_motion = axis * p.accel;
+      // The raised-cosine profile of a unit move: fraction travelled, its rate and acceleration.
+      const double w = kTwoPi / seg.duration;
+      carried_p = start_positions_[static_cast<std::size_t>(k)] + seg.translation * (tau / seg.duration - std::sin(w * tau) / kTwoPi);
+      carried_v = seg.translation * ((1.0 - std::cos(w * tau)) / seg.duration);
+      carried_a = seg.translation * (w * std::sin(w * tau) / seg.duration);
+    } else {
+      carried_p = start_positions_[static_cast<std::size_t>(k)];
     }
   }
 
@@ -181,6 +194,11 @@ TruthState Motion::at(double t) const {
   s.p_n = leverArmPosition(c, r_b);
   s.v_n = leverArmVelocity(c, omega, r_b);
   s.a_n = c * acc_b;
+  s.p_n += carried_p;
+  if (inside) {
+    s.v_n += carried_v;
+    s.a_n += carried_a;
+  }
   if (!centre_amp_.empty()) {
     // Outside [0, duration] the centre rests where it was at the boundary, as the attitude does.
     const JitterValue d = jitterAt(centre_amp_, centre_freq_, centre_phase_, tc);

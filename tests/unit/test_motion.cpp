@@ -107,6 +107,36 @@ TEST(Motion, StillLevelBodyReadsMinusG) {
   EXPECT_EQ(s.v_n, Vec3::Zero());
 }
 
+TEST(Motion, CarriedCentreFollowsTheRaisedCosineByHand) {
+  // A pure carry (no turn) of d = (0.3, -0.2, 0.1) m in T = 2 s after a 1 s still: fraction travelled
+  // tau / T - sin(2 pi tau / T) / (2 pi), so half way at the middle, with speed 2 d / T there and the
+  // largest acceleration 2 pi d / T^2 a quarter in.
+  MotionConfig cfg;
+  Segment carry = rotate(Vec3::UnitZ(), 0.0, 2.0);
+  carry.translation = Vec3(0.3, -0.2, 0.1);
+  cfg.segments = {still(1.0), carry, still(1.0)};
+  const Motion m(cfg, EarthModel{});
+  const Vec3 d = carry.translation;
+  const TruthState mid = m.at(2.0);
+  EXPECT_LT((mid.p_n - 0.5 * d).norm(), 1e-15);
+  EXPECT_LT((mid.v_n - d).norm(), 1e-15);  // 2 d / T with T = 2
+  const TruthState quarter = m.at(1.5);
+  EXPECT_LT((quarter.a_n - 2.0 * kPi * d / 4.0).norm(), 1e-14);
+  EXPECT_LT((quarter.p_n - d * (0.25 - 1.0 / (2.0 * kPi))).norm(), 1e-15);
+  // The accelerometer reads the carry on top of gravity (level body, yaw 0: NED = FRD).
+  EXPECT_LT((quarter.f_b - (quarter.a_n - Vec3(0.0, 0.0, kG))).norm(), 1e-12);
+  // Set down: at rest where it was carried to, and it stays there.
+  const TruthState after = m.at(3.5);
+  EXPECT_LT((after.p_n - d).norm(), 1e-15);
+  EXPECT_EQ(after.v_n, Vec3::Zero());
+  EXPECT_EQ(m.at(10.0).p_n, after.p_n);
+  // A still segment cannot be carried.
+  Segment bad = still(1.0);
+  bad.translation = Vec3::UnitX();
+  cfg.segments = {bad};
+  EXPECT_THROW(Motion(cfg, EarthModel{}), std::invalid_argument);
+}
+
 TEST(Motion, TiltedStillBodySeesRotatedGravity) {
   MotionConfig cfg;
   cfg.initial_euler = Vec3(0.2, -0.3, 2.0);

@@ -64,6 +64,10 @@ struct MeasurementConfig {
   // attitude turned about the vertical there still shows up as tilt once the device is laid down again.
   double heading_max_elevation = 60.0 * 3.14159265358979323846 / 180.0;  // rad
   CentreMotionConfig centre_motion;
+  // The device is set down between moves (picked up, turned, carried, put down: imu_tk-style poses)
+  // instead of turned about a fixed centre: zero velocity holds only while it is still, and nothing holds
+  // its position; the gyro alone carries the attitude from one still to the next.
+  bool free_moves = false;
 };
 
 struct FilterConfig {

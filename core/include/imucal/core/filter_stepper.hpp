@@ -40,7 +40,9 @@ class FilterStepper {
   void addHeading(double t, double heading);
   // The next IMU sample (later than the last); true when it ended a filter step. end_step ends the step
   // here even if it is shorter than per_step (the stream's last sample).
-  bool addImu(const ImuSample& sample, bool end_step = false);
+  // still: the sample is in a still stretch (with free_moves, zero velocity is applied only at steps whose
+  // last sample is still).
+  bool addImu(const ImuSample& sample, bool end_step = false, bool still = true);
   const MeasurementStats& stats() const { return stats_; }
   std::size_t steps() const { return steps_; }
 
@@ -50,7 +52,7 @@ class FilterStepper {
   };
   void flush();
   void applyHeading(double value);
-  void endStep();
+  void endStep(bool still);
 
   Eskf& filter_;
   MeasurementConfig m_;

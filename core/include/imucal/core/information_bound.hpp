@@ -15,6 +15,7 @@ struct TrajectoryPoint {
   Quat q_nb = Quat::Identity();
   Vec3 f_b = Vec3::Zero();  // true specific force, body
   Vec3 w_b = Vec3::Zero();  // true inertial angular rate, body
+  bool still = true;        // at rest (with free_moves only these points hold zero velocity)
 };
 
 struct BoundResult {

@@ -20,6 +20,9 @@ struct Segment {
   Vec3 axis = Vec3::UnitZ();       // body-frame rotation axis (normalized on use)
   double angle = 0.0;              // rad, signed (right-hand about axis)
   RateProfile profile = RateProfile::RaisedCosine;
+  // m, NED: how far the centre is carried during a rotation segment (a hand picking the device up, turning
+  // it and setting it down elsewhere), with a raised-cosine speed that starts and ends at rest.
+  Vec3 translation = Vec3::Zero();
 };
 
 struct HandJitter {
@@ -68,6 +71,7 @@ class Motion {
   double duration_ = 0.0;
   std::vector<double> start_times_;
   std::vector<Quat> start_attitudes_;
+  std::vector<Vec3> start_positions_;  // of the centre, NED, carried by the segments' translations
   // Jitter: per axis, amplitudes, frequencies (rad/s) and phases of its sinusoids.
   std::vector<Vec3> jitter_amp_, jitter_freq_, jitter_phase_;
   // Centre displacement: the same form, in NED.
