@@ -18,27 +18,27 @@ std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
   // Plausible: beyond any such part, even read as raw counts with a sensitivity 30 % off.
   return {{
       {ParamBlock::AccelBias, "accel_bias", xyz, "m/s^2", "ug", "ug", micro_g, 0.1 * kStandardGravity,
-       0.5 * kStandardGravity, BlockMode::Estimate, "accelerometer offset"},
+       0.5 * kStandardGravity, BlockMode::Estimate, BlockMode::Estimate, "accelerometer offset"},
       {ParamBlock::GyroBias, "gyro_bias", xyz, "rad/s", "deg/h", "deg_per_h", deg_per_h, 1.0 * deg_per_s,
-       30.0 * deg_per_s, BlockMode::Estimate, "gyro offset"},
-      {ParamBlock::AccelScale, "accel_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off,
+       30.0 * deg_per_s, BlockMode::Estimate, BlockMode::Estimate, "gyro offset"},
+      {ParamBlock::AccelScale, "accel_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate,
        "accelerometer scale factor error (sensitivity ratio - 1)"},
-      {ParamBlock::GyroScale, "gyro_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off,
+      {ParamBlock::GyroScale, "gyro_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate,
        "gyro scale factor error (sensitivity ratio - 1)"},
       {ParamBlock::AccelMisalignment, "accel_misalignment", {"yx", "zx", "zy"}, "rad", "mrad", "mrad", mrad,
-       1.0 * deg, 5.0 * deg, BlockMode::Off, "accelerometer non-orthogonality (lower triangle)"},
+       1.0 * deg, 5.0 * deg, BlockMode::Off, BlockMode::Estimate, "accelerometer non-orthogonality (lower triangle)"},
       {ParamBlock::GyroMisalignment, "gyro_misalignment", {"xy", "xz", "yx", "yz", "zx", "zy"}, "rad", "mrad",
-       "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off,
+       "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off, BlockMode::Estimate,
        "gyro cross-axis terms relative to the accelerometer's axes"},
       {ParamBlock::GyroGSensitivity, "gyro_g_sensitivity", {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"},
        "rad/s/(m/s^2)", "deg/s/g", "deg_per_s_per_g", deg_per_s_per_g, 0.1 * deg_per_s_per_g,
-       2.0 * deg_per_s_per_g, BlockMode::Off, "gyro rate per specific force (linear acceleration sensitivity)"},
+       2.0 * deg_per_s_per_g, BlockMode::Off, BlockMode::Estimate, "gyro rate per specific force (linear acceleration sensitivity)"},
       // Normal gravity runs from 9.780 (equator) to 9.832 m/s^2 (poles): a 1-sigma of a quarter of that
       // span puts the whole range within 2 sigma of the standard value.
-      {ParamBlock::Gravity, "gravity", {""}, "m/s^2", "ug", "ug", micro_g, 0.013, 0.06, BlockMode::Off,
+      {ParamBlock::Gravity, "gravity", {""}, "m/s^2", "ug", "ug", micro_g, 0.013, 0.06, BlockMode::Off, BlockMode::Off,
        "gravity magnitude minus the one assumed"},
       // A hand turns a board about a point a few centimetres from the IMU.
-      {ParamBlock::LeverArm, "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05, 0.5, BlockMode::Off,
+      {ParamBlock::LeverArm, "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05, 0.5, BlockMode::Off, BlockMode::Off,
        "IMU position relative to the centre of the turn, body axes"},
   }};
 }

@@ -250,6 +250,12 @@ void readFilter(YamlSection s, FilterConfig& f) {
 
 }  // namespace
 
+FilterConfig userFilterDefaults() {
+  FilterConfig f;
+  for (const auto& info : paramBlocks()) f.model[info.block].mode = info.config_mode;
+  return f;
+}
+
 CalibrateConfig calibrateConfigFrom(YamlSection top) {
   CalibrateConfig c;
   c.imu = readImuFormat(top.section("imu"));

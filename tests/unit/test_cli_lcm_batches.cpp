@@ -40,7 +40,8 @@ TEST(CliLcmBatches, BatchedRecordingCalibratesAsTheSingleOne) {
   EXPECT_EQ(readJson(dir / "period.report.json")["imu_batches"], 121);
   const auto calibrate = [&](const std::string& log, const std::string& name) {
     const imucal::testing::CommandRun r =
-        imucal::testing::runImucal("calibrate --lcm-log " + log + " --out " + (dir / (name + ".json")));
+        imucal::testing::runImucal("calibrate --lcm-log " + log + " --config " + IMUCAL_CONFIG_DIR +
+                                   "/paper-calibrate.yaml --out " + (dir / (name + ".json")));
     EXPECT_EQ(r.status, 0) << r.output;
     return readJson(dir / (name + ".json"))["parameters"];
   };

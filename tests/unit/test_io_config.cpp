@@ -367,6 +367,17 @@ TEST(IoConfig, CalibrateConfigEmptyFileGivesDefaults) {
   EXPECT_EQ(c.filter.prior.yaw, d.prior.yaw);
   EXPECT_EQ(c.filter.noise.accel_white, d.noise.accel_white);
   EXPECT_EQ(c.filter.measurements.heading_sigma, d.measurements.heading_sigma);
+  // The full sensor model unless the config narrows it; a FilterConfig built in code has the biases only.
+  for (ParamBlock b : {ParamBlock::AccelBias, ParamBlock::GyroBias, ParamBlock::AccelScale, ParamBlock::GyroScale,
+                       ParamBlock::AccelMisalignment, ParamBlock::GyroMisalignment, ParamBlock::GyroGSensitivity}) {
+    EXPECT_EQ(c.filter.model[b].mode, BlockMode::Estimate) << blockInfo(b).id;
+    EXPECT_EQ(CalibrateConfig{}.filter.model[b].mode, BlockMode::Estimate) << blockInfo(b).id;
+  }
+  EXPECT_EQ(c.filter.model[ParamBlock::LeverArm].mode, BlockMode::Off);
+  EXPECT_EQ(d.model[ParamBlock::AccelScale].mode, BlockMode::Off);
+  // The paper's config keeps the paper's model.
+  const CalibrateConfig paper = loadCalibrateConfig(std::string(IMUCAL_CONFIG_DIR) + "/paper-calibrate.yaml");
+  EXPECT_EQ(StateLayout::make(paper.filter.model).paramCount(), 6);
 }
 
 void expectCalibrateError(const std::string& yaml, const std::string& expected) {

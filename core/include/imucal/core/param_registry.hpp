@@ -50,7 +50,10 @@ struct ParamBlockInfo {
   double si_per_human = 1.0;            // si_value = human_value * si_per_human
   double prior_sigma = 0.0;             // default 1-sigma before any data, SI
   double plausible = 0.0;               // |value| beyond this is no consumer sensor: refused, SI
-  BlockMode default_mode = BlockMode::Off;
+  BlockMode default_mode = BlockMode::Off;   // a FilterConfig built in code: the biases only
+  // A calibration config (file or the daemon's) that does not name the block: the full sensor model, what
+  // the motion cannot reveal staying at its prior and reported so.
+  BlockMode config_mode = BlockMode::Off;
   std::string description;
 
   int size() const { return static_cast<int>(components.size()); }

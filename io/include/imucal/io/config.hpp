@@ -10,10 +10,14 @@
 namespace imucal::io {
 
 // Everything `calibrate` needs besides the data: how to read the files and how to run the filter.
+// What a user's calibration gets when the config does not say: the full sensor model (the registry's
+// config_mode), unlike a FilterConfig built in code.
+FilterConfig userFilterDefaults();
+
 struct CalibrateConfig {
   ImuCsvFormat imu;
   HeadingCsvFormat heading;
-  FilterConfig filter;
+  FilterConfig filter = userFilterDefaults();
   MagCsvFormat mag;               // used when heading comes from a magnetometer file instead
   MagHeadingOptions mag_heading;
 };
