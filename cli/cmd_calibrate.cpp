@@ -1,5 +1,6 @@
 // `imucal calibrate`: runs the filter on recorded CSVs (IMU plus heading or magnetometer) and writes the
 // estimates, their 1-sigma and convergence as JSON and the per-epoch history as CSV.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -52,6 +53,12 @@ std::string fixed1(double v) {
   return s.str();
 }
 
+// Decimals that show a sigma to two significant digits (a g-sensitivity of 0.004 deg/s/g is not "0.0").
+int decimalsFor(double sigma) {
+  if (!(sigma > 0.0) || !std::isfinite(sigma)) return 1;
+  return std::clamp(1 - static_cast<int>(std::floor(std::log10(sigma))), 1, 6);
+}
+
 void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
   for (const auto& w : r.warnings) std::cout << "warning: " << w << '\n';
   if (r.noise_measured.valid)
@@ -65,20 +72,21 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
               << r.bias_walk_measured.accel_instability_used / units::micro_g << " ug, gyro walk "
               << r.bias_walk_measured.gyro_walk_used / units::deg_per_h_per_sqrt_h << " deg/h/sqrt(h) and instability "
               << r.bias_walk_measured.gyro_instability_used / units::deg_per_h << " deg/h (bounds one sigma above)\n";
-  std::cout << "parameter        estimate        1-sigma   converged  t_conv_s" << (truth ? "      truth     error/sigma" : "")
+  std::cout << "parameter                   estimate      1-sigma unit    converged  t_conv_s" << (truth ? "      truth     error/sigma" : "")
             << '\n';
   for (std::size_t j = 0; j < r.names.size(); ++j) {
     const int i = static_cast<int>(j);
     const io::ParamUnit unit = io::paramUnit(r.names[j]);
-    std::cout << std::left << std::setw(24) << r.names[j] << std::right << std::fixed << std::setprecision(1)
+    const int decimals = decimalsFor(r.sigma(i) / unit.factor);
+    std::cout << std::left << std::setw(24) << r.names[j] << std::right << std::fixed << std::setprecision(decimals)
               << std::setw(12) << r.estimate(i) / unit.factor << ' ' << std::setw(12) << r.sigma(i) / unit.factor << ' '
-              << std::left << std::setw(6) << unit.human << std::right << std::setw(5) << (r.converged[j] ? "yes" : "no")
+              << std::left << std::setw(8) << unit.human << std::right << std::setw(5) << (r.converged[j] ? "yes" : "no")
               << std::setw(10) << (std::isfinite(r.convergence_time(i)) ? fixed1(r.convergence_time(i)) : "-");
     if (truth) {
       const auto& p = (*truth)["parameters"];
       if (p.contains(r.names[j]) && p[r.names[j]].contains("value_si")) {
         const double t = p[r.names[j]]["value_si"].get<double>();
-        std::cout << std::setw(11) << t / unit.factor << std::setw(12) << std::setprecision(2)
+        std::cout << std::setprecision(decimals) << std::setw(11) << t / unit.factor << std::setw(12) << std::setprecision(2)
                   << (r.estimate(i) - t) / r.sigma(i);
       }
     }

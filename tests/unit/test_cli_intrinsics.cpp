@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
@@ -51,6 +52,18 @@ TEST(CliIntrinsics, ProtocolRecordingHoldsTheTruthInEveryForm) {
                                           " --config " + kConfigs + "protocol-calibrate.yaml --out " + path("r.json") +
                                           " --intrinsics " + path("i.json") + " --kalibr " + path("k.yaml"));
   ASSERT_EQ(r.status, 0) << r.output;
+  // The printed table shows each sigma to two significant digits in its human unit: a g-sensitivity of a
+  // few thousandths of a deg/s/g is not "0.0 +- 0.0".
+  {
+    const auto at = r.output.find("\ngyro_g_sensitivity_xy ");
+    ASSERT_NE(at, std::string::npos) << r.output;
+    std::istringstream line(r.output.substr(at + 1, r.output.find('\n', at + 1) - at - 1));
+    std::string name, value, sigma, unit;
+    line >> name >> value >> sigma >> unit;
+    EXPECT_EQ(unit, "deg/s/g");
+    EXPECT_EQ(sigma.size() - sigma.find('.') - 1, 4u) << sigma;  // 0.00xx
+    EXPECT_GT(std::stod(sigma), 0.0) << sigma;
+  }
   const auto j = nlohmann::json::parse(std::ifstream(path("i.json")));
   const StandardIntrinsics truth = standardIntrinsics(io::loadSimConfig(kConfigs + "protocol-sim.yaml").imu.errors);
   EXPECT_TRUE(j["not_converged"].empty()) << j["not_converged"].dump();
