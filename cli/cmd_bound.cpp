@@ -25,14 +25,8 @@ struct BoundArgs {
 
 void runBoundCommand(const BoundArgs& args) {
   const sim::SimConfig sim_config = io::loadSimConfig(args.config);
-  FilterConfig base;
-  if (!args.calibrate_config.empty()) base = io::loadCalibrateConfig(args.calibrate_config).filter;
-  const FilterConfig filter = filterMatchingSimulation(sim_config, base);
-  // The bound needs the true trajectory and the heading times only; noise realizations do not matter.
-  const sim::SimOutput sim = sim::simulate(sim_config, 1);
-  std::vector<double> heading_times;
-  for (const auto& h : sim.heading) heading_times.push_back(h.t - sim_config.heading.latency);
-  const BoundResult bound = informationBound(sim::toTrajectory(sim.truth), heading_times, filter);
+  const FilterConfig filter = filterMatchingSimulation(sim_config, userFilter(args.calibrate_config));
+  const BoundResult bound = sim::simulatedBound(sim_config, filter);
 
   nlohmann::json json;
   std::cout << "Information bound (1-sigma) for " << args.config << ":\n";

@@ -50,7 +50,7 @@ void runMotionStudyCommand(const MonteCarloArgs& args) {
   options.runs = args.runs;
   options.first_seed = args.seed;
   options.threads = args.threads;
-  if (!args.config.empty()) options.filter = io::loadCalibrateConfig(args.config).filter;
+  options.filter = userFilter(args.config);
   options.bound_filter = filterMatchingSimulation(sim, options.filter);
   const sim::MotionStudyReport report = sim::runMotionStudy(sim, options);
   writeOutputs(args, motionStudyMarkdown(report, args.sim_config), motionStudyJson(report));

@@ -44,19 +44,13 @@ struct PlanInput {
   bool from_data = false;
 };
 
-double rateOf(std::size_t count, double span) { return span > 0.0 ? static_cast<double>(count) / span : 0.0; }
 
 PlanInput fromSimulation(const PlanArgs& args) {
   const sim::SimConfig sim_config = io::loadSimConfig(args.sim_config);
-  FilterConfig base;
-  if (!args.config.empty()) base = io::loadCalibrateConfig(args.config).filter;
   PlanInput in;
   in.source = args.sim_config + " (information bound)";
-  in.filter = filterMatchingSimulation(sim_config, base);
-  const sim::SimOutput sim = sim::simulate(sim_config, 1);
-  std::vector<double> heading_times;
-  for (const auto& h : sim.heading) heading_times.push_back(h.t - sim_config.heading.latency);
-  const BoundResult bound = informationBound(sim::toTrajectory(sim.truth), heading_times, in.filter);
+  in.filter = filterMatchingSimulation(sim_config, userFilter(args.config));
+  const BoundResult bound = sim::simulatedBound(sim_config, in.filter);
   const int n = static_cast<int>(bound.names.size());
   in.names = bound.names;
   in.covariance = bound.covariance.block(StateLayout::kParamStart, StateLayout::kParamStart, n, n);
@@ -64,8 +58,7 @@ PlanInput fromSimulation(const PlanArgs& args) {
   const StateLayout layout = StateLayout::make(effective.model, effective.measurements.centre_motion.enabled);
   in.prior_sigma = priorCovariance(effective, layout, 0.0).diagonal().segment(StateLayout::kParamStart, n).cwiseSqrt();
   in.estimate = VecX::Zero(n);
-  const double span = sim.truth.empty() ? 0.0 : sim.truth.back().t - sim.truth.front().t;
-  in.heading_rate_hz = in.filter.measurements.heading ? rateOf(sim.heading.size(), span) : 0.0;
+  in.heading_rate_hz = in.filter.measurements.heading ? sim_config.heading.rate_hz : 0.0;
   return in;
 }
 
@@ -83,7 +76,8 @@ PlanInput fromRecording(const PlanArgs& args) {
   in.prior_sigma = result.prior_sigma;
   in.estimate = result.estimate;
   const double span = recording.imu.back().t - recording.imu.front().t;
-  in.heading_rate_hz = config.filter.measurements.heading ? rateOf(recording.heading.size(), span) : 0.0;
+  in.heading_rate_hz =
+      config.filter.measurements.heading && span > 0.0 ? static_cast<double>(recording.heading.size()) / span : 0.0;
   in.from_data = true;
   return in;
 }

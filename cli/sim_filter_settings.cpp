@@ -2,7 +2,13 @@
 
 #include <cmath>
 
+#include "imucal/io/config.hpp"
+
 namespace imucal::cli {
+
+FilterConfig userFilter(const std::string& calibrate_config_path) {
+  return calibrate_config_path.empty() ? io::userFilterDefaults() : io::loadCalibrateConfig(calibrate_config_path).filter;
+}
 
 FilterConfig filterMatchingSimulation(const sim::SimConfig& sim, FilterConfig base) {
   // One density per triad in the filter: the noisiest axis keeps the bound honest.

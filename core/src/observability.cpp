@@ -25,7 +25,8 @@ namespace {
 // Entanglement is judged by correlation: a half means a quarter of one's variance is explained by the other.
 constexpr double kEntangledCorrelation = 0.5;
 
-std::vector<std::string> entangledWith(const StateLayout& layout, const MatX& cov, int j) {
+std::vector<std::string> entangledWith(const StateLayout& layout, const std::vector<std::string>& names, const MatX& cov,
+                                       int j) {
   std::vector<std::pair<double, int>> partners;
   for (int k = 0; k < layout.paramCount(); ++k) {
     if (k == j || layout.mode(layout.params()[static_cast<std::size_t>(k)].block) == BlockMode::Consider) continue;
@@ -34,7 +35,6 @@ std::vector<std::string> entangledWith(const StateLayout& layout, const MatX& co
     if (std::abs(rho) > kEntangledCorrelation) partners.emplace_back(-std::abs(rho), k);
   }
   std::sort(partners.begin(), partners.end());
-  const std::vector<std::string> names = layout.paramNames();
   std::vector<std::string> out;
   for (const auto& p : partners) out.push_back(names[static_cast<std::size_t>(p.second)]);
   return out;
@@ -90,7 +90,7 @@ ObservabilityReport assessObservability(const StateLayout& layout, const MatX& c
     }
   for (int j : open) {
     ParameterObservability& p = report.parameters[static_cast<std::size_t>(j)];
-    if (p.verdict == Observability::Partly || p.verdict == Observability::LimitedByGravity) p.with = entangledWith(layout, cov, j);
+    if (p.verdict == Observability::Partly || p.verdict == Observability::LimitedByGravity) p.with = entangledWith(layout, names, cov, j);
   }
   return report;
 }

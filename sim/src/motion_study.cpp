@@ -7,7 +7,6 @@
 #include <thread>
 
 #include "imucal/core/calibrator.hpp"
-#include "imucal/core/information_bound.hpp"
 #include "imucal/core/param_vector.hpp"
 #include "imucal/sim/trajectory.hpp"
 
@@ -19,14 +18,6 @@ struct RunOutcome {
   VecX error, sigma;
   std::vector<bool> converged;
 };
-
-VecX boundOf(const SimConfig& sim, const FilterConfig& filter) {
-  const SimOutput out = simulate(sim, 1);
-  std::vector<double> heading_times;
-  if (filter.measurements.heading)
-    for (const auto& h : out.heading) heading_times.push_back(h.t - sim.heading.latency);
-  return informationBound(toTrajectory(out.truth), heading_times, filter).sigma;
-}
 
 }  // namespace
 
@@ -53,7 +44,7 @@ MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions&
   for (unsigned i = 0; i < threads; ++i) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
 
-  const VecX bound = boundOf(sim, options.bound_filter);
+  const VecX bound = simulatedBound(sim, options.bound_filter).sigma;
   const auto n = static_cast<Eigen::Index>(names.size());
   if (bound.size() != n) throw std::invalid_argument("motion study: the bound's model differs from the filter's");
   MotionStudyReport report;

@@ -11,4 +11,11 @@ std::vector<TrajectoryPoint> toTrajectory(const std::vector<TruthState>& truth) 
   return out;
 }
 
+BoundResult simulatedBound(const SimConfig& config, const FilterConfig& filter) {
+  const SimOutput out = simulate(config, 1);
+  std::vector<double> heading_times;
+  for (const auto& h : out.heading) heading_times.push_back(h.t - config.heading.latency);
+  return informationBound(toTrajectory(out.truth), heading_times, filter);
+}
+
 }  // namespace imucal::sim

@@ -10,6 +10,7 @@
 #include "imucal/io/config.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/sim_formats.hpp"
+#include "input_error_of.hpp"
 #include "scratch_dir.hpp"
 
 namespace imucal::io {
@@ -28,20 +29,7 @@ std::string writeFile(const std::string& name, const std::string& content) {
   return path.string();
 }
 
-template <class F>
-std::string inputErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("wrong exception type: ") + e.what();
-  }
-  return "no exception";
-}
-
-#define EXPECT_CONTAINS(message, part) \
-  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message) << "\nexpected: " << (part)
+using imucal::testing::inputErrorOf;
 
 const char* kFullSim = R"(# every key of a sim config
 motion:

@@ -9,6 +9,7 @@
 #include "imucal/io/csv_reader.hpp"
 #include "imucal/io/csv_table.hpp"
 #include "imucal/io/errors.hpp"
+#include "input_error_of.hpp"
 #include "scratch_dir.hpp"
 
 namespace imucal::io {
@@ -40,20 +41,7 @@ std::string imuText(int rows, int replace_line = 0, const std::string& replaceme
   return out.str();
 }
 
-template <class F>
-std::string inputErrorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("wrong exception type: ") + e.what();
-  }
-  return "no exception";
-}
-
-#define EXPECT_CONTAINS(message, part) \
-  EXPECT_NE((message).find(part), std::string::npos) << "message: " << (message) << "\nexpected: " << (part)
+using imucal::testing::inputErrorOf;
 
 TEST(IoCsvErrors, MissingColumnNamesTheHeaderLineAndListsWhatIsThere) {
   const auto path = writeFile("missing.csv", "# comment\n\nt,ax,ay,az,gx,gy\n0,0,0,-9.8,0,0\n");

@@ -10,7 +10,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/csv_reader.hpp"
-#include "imucal/io/errors.hpp"
+#include "input_error_of.hpp"
 #include "scratch_dir.hpp"
 
 namespace imucal::io {
@@ -54,15 +54,10 @@ TEST(IoRawCounts, AFractionInACountColumnNamesItsLineAndColumn) {
                                      "t,ax,ay,az,gx,gy,gz\n"
                                      "0,32768,32768,16384,32768,32768,32700\n"
                                      "0.01,32768,32768,16384,32768,32768.5,32700\n");
-  try {
-    readImuCsv(path, mpuRegisters());
-    FAIL() << "a fraction was read as a count";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("frac.csv:3"), std::string::npos) << what;
-    EXPECT_NE(what.find("'gy'"), std::string::npos) << what;
-    EXPECT_NE(what.find("32768.5 is not a whole count"), std::string::npos) << what;
-  }
+  const std::string what = imucal::testing::inputErrorOf([&] { readImuCsv(path, mpuRegisters()); });
+  EXPECT_CONTAINS(what, "frac.csv:3");
+  EXPECT_CONTAINS(what, "'gy'");
+  EXPECT_CONTAINS(what, "32768.5 is not a whole count");
 }
 
 TEST(IoRawCounts, ConfigReadsCountsAndWidensTheScalePrior) {
@@ -95,12 +90,8 @@ TEST(IoRawCounts, BadCountSettingsNameTheKey) {
        {std::pair{"imu:\n  accel_counts: {offset: 32768}\n", ":2: imu.accel_counts.per_unit: is needed"},
         std::pair{"imu:\n  gyro_counts: {offset: 0, per_unit: 0}\n", ":2: imu.gyro_counts.per_unit: must be a non-zero number"},
         std::pair{"imu:\n  gyro_counts: {offset: 0, per_unit: 131, scale: 2}\n", ":2: imu.gyro_counts: unknown key 'scale'"}}) {
-    try {
-      parseCalibrateConfig(yaml, "bad.yaml");
-      FAIL() << yaml;
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
-    }
+    const std::string what = imucal::testing::inputErrorOf([&] { parseCalibrateConfig(yaml, "bad.yaml"); });
+    EXPECT_CONTAINS(what, expected);
   }
 }
 
