@@ -18,7 +18,7 @@ motion:
   segments:
     - still: {duration_s: 5}
     - rotate: {axis: z, angle_deg: 360, duration_s: 8}
-    - still: {duration_s: 5}
+    - still: {duration_s: 8}  # the session ends session.end_still_s (6 s) into it
 imu:
   rate_hz: $rate
   accel: {bias_mg: [45, -42, 48], vrw_m_per_s_per_sqrt_h: 0.15}

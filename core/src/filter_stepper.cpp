@@ -79,8 +79,9 @@ void FilterStepper::endStep(bool still) {
     stats_.velocity_nis_mean = velocity_nis_sum_ / (3.0 * static_cast<double>(stats_.zero_velocity_updates));
   }
   if (m_.constant_position && !m_.free_moves) {
-    filter_.updateConstantPosition(Vec3::Zero(), m_.constant_position_sigma);
+    position_nis_sum_ += filter_.updateConstantPosition(Vec3::Zero(), m_.constant_position_sigma);
     ++stats_.position_updates;
+    stats_.position_nis_mean = position_nis_sum_ / (3.0 * static_cast<double>(stats_.position_updates));
   }
   filter_.correct();
   while (!headings_.empty() && headings_.front().t == filter_.time()) {

@@ -24,6 +24,12 @@ StateMat priorCovariance(const FilterConfig& config, const StateLayout& layout, 
     const double sigma = config.model[info.block].sigma;
     P.diagonal().segment(layout.offset(info.block), info.size()).setConstant(sigma * sigma);
   }
+  const std::vector<int> carried = carriedIndices(layout, config.carried);
+  for (std::size_t i = 0; i < carried.size(); ++i)
+    for (std::size_t j = 0; j < carried.size(); ++j)
+      if (carried[i] >= 0 && carried[j] >= 0)
+        P(L::kParamStart + carried[i], L::kParamStart + carried[j]) =
+            config.carried.covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
   if (layout.hasCentre()) {
     // The pseudo-observations' origin is the centre's mean position; the device starts where the hand's
     // displacement has it (stationary), so its position and velocity share the centre's uncertainty.
@@ -41,6 +47,12 @@ StateMat priorCovariance(const FilterConfig& config, const StateLayout& layout, 
     }
   }
   return P;
+}
+
+VecX registryPriorSigma(const FilterConfig& config, const StateLayout& layout) {
+  FilterConfig registry = config;
+  registry.carried = {};
+  return priorCovariance(registry, layout, 0.0).diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
 }
 
 void correlateStartWithLeverArm(StateMat& P, const StateLayout& layout, const Mat3& c_bn) {

@@ -57,8 +57,8 @@ LiveCalibration::LiveCalibration(const std::vector<ImuSample>& lead, const std::
   imu_.reserve(lead.size() * 4);
   imu_.assign(lead.begin(), lead.end());
   const StateLayout layout = StateLayout::make(config_.model, m.centre_motion.enabled);
-  prior_mean_ = priorMean(layout, config_.model);
-  prior_sigma_ = priorCovariance(config_, layout, 0.0).diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+  prior_mean_ = priorMean(layout, config_);
+  prior_sigma_ = registryPriorSigma(config_, layout);
   startPass(prior_mean_, VecX(), true);
   for (std::size_t k = 1; k < imu_.size() && failure_.empty(); ++k) step(imu_[k]);
 }

@@ -58,3 +58,24 @@ VecX priorMean(const StateLayout& layout, const ModelOptions& options) {
 }
 
 }  // namespace imucal
+
+namespace imucal {
+
+std::vector<int> carriedIndices(const StateLayout& layout, const CarriedPrior& carried) {
+  const std::vector<std::string> names = layout.paramNames();
+  std::vector<int> index(carried.names.size(), -1);
+  for (std::size_t i = 0; i < carried.names.size(); ++i)
+    for (std::size_t j = 0; j < names.size(); ++j)
+      if (names[j] == carried.names[i]) index[i] = static_cast<int>(j);
+  return index;
+}
+
+VecX priorMean(const StateLayout& layout, const FilterConfig& config) {
+  VecX x = priorMean(layout, config.model);
+  const std::vector<int> index = carriedIndices(layout, config.carried);
+  for (std::size_t i = 0; i < index.size(); ++i)
+    if (index[i] >= 0) x(index[i]) = config.carried.mean(static_cast<Eigen::Index>(i));
+  return x;
+}
+
+}  // namespace imucal

@@ -128,7 +128,7 @@ void CalibrationService::updateLive(Sensor& sn, SessionPhase before, const ImuSa
     std::vector<HeadingSample> heading;
     for (const auto& h : headings_)
       if (h.t >= lead.front().t && h.t <= lead.back().t) heading.push_back(h);
-    const double span = lead.back().t - lead.front().t + config_.session.max_turn_time + config_.session.min_still;
+    const double span = lead.back().t - lead.front().t + config_.session.max_turn_time + config_.session.end_still;
     try {
       sn.live = std::make_unique<LiveCalibration>(lead, heading, config_.filter, span);
     } catch (const std::invalid_argument&) {
@@ -138,8 +138,8 @@ void CalibrationService::updateLive(Sensor& sn, SessionPhase before, const ImuSa
     sn.live_refined_at = s.t;
     return;
   }
-  if (!sn.live) return;
-  sn.live->addImu(s);
+  if (!sn.live || !sn.detector.stored()) return;
+  sn.live->addImu(*sn.detector.stored());
   // A single pass linearized about the prior is overconfident while the turn separates the biases from
   // the attitude; the refined pass is as honest as the final calibration.
   if (s.t - sn.live_refined_at >= config_.live_refine_interval) {
@@ -193,17 +193,23 @@ bool CalibrationService::finishSession(const std::string& id, const Session& ses
   Sensor& sn = sensors_.at(id);
   // A sensor calibrates one session at a time: a new one waits for the last (only in a fast replay).
   if (sn.pending.valid()) apply(takePending(sn));
-  std::vector<HeadingSample> heading(headings_.begin(), headings_.end());
+  SessionInput in;
+  in.sensor_id = id;
+  in.imu = session.imu;
+  in.heading.assign(headings_.begin(), headings_.end());
+  in.filter = config_.filter;
+  in.state_dir = config_.state_dir;
+  in.earlier = reports_[id].calibration;
+  in.carry_over = config_.carry_over;
   if (!config_.background_calibration) {
-    apply(calibrateSession(id, session.imu, heading, config_.filter, config_.state_dir));
+    apply(calibrateSession(in));
     return true;
   }
   // The result is set before the wake-up is written, so collectFinished() always finds it ready.
   std::promise<SessionOutcome> promise;
   sn.pending = promise.get_future();
-  sn.worker = std::thread([this, id, imu = session.imu, heading = std::move(heading), filter = config_.filter,
-                           dir = config_.state_dir, promise = std::move(promise)]() mutable {
-    promise.set_value(calibrateSession(id, imu, heading, filter, dir));
+  sn.worker = std::thread([this, in = std::move(in), promise = std::move(promise)]() mutable {
+    promise.set_value(calibrateSession(in));
     const std::uint64_t one = 1;
     // An eventfd write of 1 fails only on counter overflow, impossible at one write per session.
     [[maybe_unused]] const ssize_t written = ::write(wake_fd_, &one, sizeof one);
@@ -234,6 +240,7 @@ void CalibrationService::apply(const SessionOutcome& outcome) {
   SensorReport& report = reports_[outcome.sensor_id];
   report.last_stats = outcome.stats;
   report.advice = outcome.advice;
+  report.notes = outcome.notes;
   if (!outcome.calibration) {
     report.state = CalibrationState::Failed;
     report.failure = outcome.failure;

@@ -85,12 +85,20 @@ StoredCalibration parsePayload(const std::string& path, const std::string& body)
   // Absent in files written before convergence times were kept: unknown, as for an unconverged one.
   c.convergence_time_s = p.contains("convergence_time_s") ? p["convergence_time_s"].get<std::vector<double>>()
                                                           : std::vector<double>(c.names.size(), -1.0);
+  // Absent in files written before carry-over: such a calibration is published but not carried on.
+  if (p.contains("covariance")) c.covariance = p["covariance"].get<std::vector<double>>();
+  c.information_utime_s = p.contains("information_utime_s") ? p["information_utime_s"].get<std::vector<double>>()
+                                                            : std::vector<double>(c.names.size(), c.utime_s);
+  if (!c.covariance.empty() && c.covariance.size() != c.names.size() * c.names.size())
+    fail(path, "covariance has " + std::to_string(c.covariance.size()) + " entries for " +
+                   std::to_string(c.names.size()) + " parameters");
   if (c.values.size() != c.names.size() || c.sigmas.size() != c.names.size() || c.converged.size() != c.names.size() ||
-      c.convergence_time_s.size() != c.names.size()) {
+      c.convergence_time_s.size() != c.names.size() || c.information_utime_s.size() != c.names.size()) {
     fail(path, "parameter lists differ in length");
   }
-  if (!std::isfinite(c.utime_s) || !allFinite(c.values) || !allFinite(c.sigmas) || !allFinite(c.convergence_time_s))
-    fail(path, "a time, value or sigma is not a finite number");
+  if (!std::isfinite(c.utime_s) || !allFinite(c.values) || !allFinite(c.sigmas) || !allFinite(c.convergence_time_s) ||
+      !allFinite(c.covariance) || !allFinite(c.information_utime_s))
+    fail(path, "a time, value, sigma or covariance is not a finite number");
   return c;
 }
 
@@ -128,7 +136,8 @@ std::string CalibrationStore::pathFor(const std::string& sensor_id) const {
 void CalibrationStore::save(const StoredCalibration& c) const {
   nlohmann::json payload{{"sensor_id", c.sensor_id}, {"utime_s", c.utime_s}, {"names", c.names},
                          {"values", c.values},       {"sigmas", c.sigmas},   {"converged", c.converged},
-                         {"convergence_time_s", c.convergence_time_s}, {"model", c.model}};
+                         {"convergence_time_s", c.convergence_time_s}, {"model", c.model},
+                         {"covariance", c.covariance}, {"information_utime_s", c.information_utime_s}};
   const std::string body = payload.dump();
   const nlohmann::json file{{"schema_version", kSchemaVersion}, {"checksum", checksumOf(body)}, {"payload", body}};
   const std::string text = file.dump(2) + "\n";

@@ -62,6 +62,14 @@ InputGateConfig readInput(YamlSection s, InputGateConfig g, NodeConfig& n) {
   return g;
 }
 
+CarryOverConfig readCarryOver(YamlSection s, CarryOverConfig c) {
+  c.enabled = s.boolean("enabled", c.enabled);
+  c.bias_forget = s.number("bias_forget_h", c.bias_forget / 3600.0, Range::positive()) * 3600.0;
+  c.other_forget = s.number("other_forget_days", c.other_forget / 86400.0, Range::positive()) * 86400.0;
+  s.finish();
+  return c;
+}
+
 StaticDetectorConfig readStill(YamlSection s, StaticDetectorConfig d) {
   d.window = s.number("window_s", d.window, Range::positive());
   d.gyro_std_max = s.number("gyro_std_max_deg_per_s", d.gyro_std_max / units::deg_per_s, Range::positive()) *
@@ -82,8 +90,13 @@ SessionDetectorConfig readSession(YamlSection s, SessionDetectorConfig d, bool& 
   if (d.max_lead_still < d.min_still)
     s.fail("max_lead_still_s", "must be >= min_still_s (" + std::to_string(d.min_still) + " s)");
   d.min_turn = s.number("min_turn_deg", d.min_turn / units::deg, Range::between(1.0, 3600.0)) * units::deg;
+  d.end_still = s.number("end_still_s", d.end_still, Range::positive());
   d.max_turn_time = s.number("max_turn_time_s", d.max_turn_time, Range::positive());
+  d.max_session_time = s.number("max_session_time_s", d.max_session_time, Range::positive());
+  if (d.max_session_time < d.max_turn_time)
+    s.fail("max_session_time_s", "must be >= max_turn_time_s (" + std::to_string(d.max_turn_time) + " s)");
   d.block = s.number("block_s", d.block, Range::nonNegative());
+  d.store_block = s.number("store_block_s", d.store_block, Range::between(0.0, 0.1));
   d.still = readStill(s.section("still"), d.still);
   s.finish();
   return d;
@@ -131,6 +144,7 @@ DaemonConfig fromYaml(const YAML::Node& root, const std::string& name, const std
   c.service.gate = readInput(top.section("input"), c.service.gate, c.node);
   c.service.session = readSession(top.section("session"), c.service.session, c.service.automatic_sessions,
                                   c.service.live_refine_interval);
+  c.service.carry_over = readCarryOver(top.section("carry_over"), c.service.carry_over);
   c.service.filter = readCalibration(top, base_dir);
   top.finish();
   return c;

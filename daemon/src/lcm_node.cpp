@@ -99,6 +99,7 @@ void LcmNode::onImu(const ImuMessage& msg) {
       if (std::isfinite(s.t) && s.t > latest_) latest_ = s.t;
       if (changed) {
         spdlog::info("sensor {}: state {}", msg.sensor_id, static_cast<int>(report_it->second.state));
+        logNotes(msg.sensor_id, report_it->second);
         publishCalibration(report_it->second, utimeAfter(latest_));
       }
       publishDue(latest_);
@@ -147,12 +148,17 @@ void LcmNode::collectFinished() {
         spdlog::info("sensor {}: state {}{}", id, static_cast<int>(report.state),
                      report.failure.empty() ? "" : " (" + report.failure + ")");
       }
+      logNotes(id, report);
       publishCalibration(report, utimeAfter(latest_));
     }
   } catch (const std::exception& e) {
     ++counters_.handler_errors;
     spdlog::error("collecting a calibration: {}", e.what());
   }
+}
+
+void LcmNode::logNotes(const std::string& id, const SensorReport& report) {
+  for (const std::string& note : report.notes) spdlog::warn("sensor {}: {}", id, note);
 }
 
 double LcmNode::age(double since) const { return since < 0.0 ? -1.0 : clock_() - since; }
@@ -195,6 +201,9 @@ imucal::calibration_t LcmNode::toMessage(const SensorReport& r, std::int64_t uti
   m.sigmas = c.sigmas;
   m.converged.assign(c.converged.begin(), c.converged.end());
   m.convergence_time_s = c.convergence_time_s;
+  m.information_age_s.assign(c.names.size(), 0.0);
+  for (std::size_t i = 0; i < c.names.size() && i < c.information_utime_s.size(); ++i)
+    m.information_age_s[i] = std::max(0.0, c.utime_s - c.information_utime_s[i]);
   // The quick-access fields, by the registry's names (a stored name it does not know stays in the arrays).
   for (std::size_t i = 0; i < c.names.size(); ++i) {
     const auto ref = findParam(c.names[i]);

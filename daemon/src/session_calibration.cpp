@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <exception>
+#include <sstream>
 
 #include "imucal/core/consistency.hpp"
 #include "imucal/core/motion_planner.hpp"
@@ -11,28 +12,87 @@ namespace imucal::daemon {
 namespace {
 // Enough for the convergence times; a session at 8 kHz would otherwise keep 0.5 kB for each sample.
 constexpr std::size_t kMaxHistoryEpochs = 5000;
+// Zero-velocity mean NIS above which a session turned about a fixed centre is tried as free moves: a model
+// that fits gives about 1, a hand's sway about the centre up to 2 (the board's real turns: 0.7-1.3), a
+// device carried 10-30 cm between poses 5 and more. Below the refusal limit (consistency.hpp), so such a
+// session is not refused first.
+constexpr double kCentreMovedNis = 3.0;
+
+CalibrationResult run(const SessionInput& in, const std::vector<HeadingSample>& heading, const FilterConfig& filter) {
+  CalibrateOptions options;
+  options.max_history_epochs = kMaxHistoryEpochs;
+  options.check_halves = true;
+  return calibrate(in.imu, heading, filter, options);
+}
+
+// The calibration with what was known before, falling back as calibrateSession says; throws what the
+// last attempt threw.
+CalibrationResult calibrateWithFallbacks(const SessionInput& in, const std::vector<HeadingSample>& heading,
+                                         FilterConfig& filter, SessionOutcome& out) {
+  CalibrationResult result = run(in, heading, filter);
+  if (!filter.carried.empty()) {
+    const CarriedMisfit misfit = carriedMisfit(filter.carried, result.names, result.estimate, result.covariance);
+    std::string why;
+    if (const std::vector<std::string> problems = inconsistencies(result); !problems.empty()) {
+      why = problems.front();
+    } else if (misfit.contradicts()) {
+      std::ostringstream m;
+      m.precision(3);
+      m << "this session moved it by chi-square " << misfit.chi2 << " over " << misfit.dof
+        << " directions (limit " << misfit.limit << "), " << misfit.worst << " by " << misfit.worst_sigmas
+        << " sigma (the sensor changed, or its bias moved more than the forget time allows)";
+      why = m.str();
+    }
+    if (!why.empty()) {
+      out.notes.push_back("the earlier calibration was not carried on: with it, " + why);
+      filter.carried = {};
+      result = run(in, heading, filter);
+    }
+  }
+  if (!filter.measurements.free_moves && filter.measurements.zero_velocity &&
+      result.stats.zero_velocity_updates > 0 && result.stats.velocity_nis_mean > kCentreMovedNis) {
+    std::ostringstream why;
+    why << "calibrated as free moves: turned about a fixed centre the zero-velocity mean NIS was "
+        << result.stats.velocity_nis_mean << " (the device was carried between poses)";
+    FilterConfig free = filter;
+    free.measurements.free_moves = true;
+    CalibrationResult moved = run(in, heading, free);
+    if (inconsistencies(moved).empty() && moved.stats.velocity_nis_mean < result.stats.velocity_nis_mean) {
+      out.notes.push_back(why.str());
+      filter = free;
+      result = std::move(moved);
+    }
+  }
+  return result;
+}
+
+std::string modelText(const CalibrationResult& result, const FilterConfig& filter) {
+  std::string text = std::to_string(result.layout.size) + "-state ESKF, " + std::to_string(result.passes_run) +
+                     " passes" + (filter.measurements.heading ? ", heading" : ", no heading");
+  if (filter.measurements.free_moves) text += ", free moves";
+  if (!filter.carried.empty()) text += ", from the earlier calibration";
+  return text;
+}
+
 }  // namespace
 
-SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<ImuSample>& imu,
-                                const std::vector<HeadingSample>& all_heading, FilterConfig filter,
-                                const std::string& state_dir) {
+SessionOutcome calibrateSession(const SessionInput& in) {
   SessionOutcome out;
-  out.sensor_id = sensor_id;
-  if (imu.empty()) {
+  out.sensor_id = in.sensor_id;
+  if (in.imu.empty()) {
     out.failure = "empty session";
     return out;
   }
   std::vector<HeadingSample> heading;
-  const double t0 = imu.front().t, t1 = imu.back().t;
-  for (const auto& h : all_heading)
+  const double t0 = in.imu.front().t, t1 = in.imu.back().t;
+  for (const auto& h : in.heading)
     if (h.t >= t0 && h.t <= t1) heading.push_back(h);
+  FilterConfig filter = in.filter;
   filter.measurements.heading = filter.measurements.heading && !heading.empty();
+  if (in.earlier) filter.carried = carriedPrior(*in.earlier, filter, t0, in.carry_over);
   CalibrationResult result;
   try {
-    CalibrateOptions options;
-    options.max_history_epochs = kMaxHistoryEpochs;
-    options.check_halves = true;
-    result = calibrate(imu, heading, filter, options);
+    result = calibrateWithFallbacks(in, heading, filter, out);
   } catch (const std::exception& e) {
     out.failure = e.what();
     return out;
@@ -67,7 +127,7 @@ SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<
     return out;
   }
   StoredCalibration c;
-  c.sensor_id = sensor_id;
+  c.sensor_id = in.sensor_id;
   c.utime_s = t1;
   c.names = result.names;
   c.values.assign(result.estimate.data(), result.estimate.data() + result.estimate.size());
@@ -75,11 +135,14 @@ SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<
   c.converged = result.converged;
   for (Eigen::Index j = 0; j < result.convergence_time.size(); ++j)
     c.convergence_time_s.push_back(std::isfinite(result.convergence_time(j)) ? result.convergence_time(j) : -1.0);
-  c.model = std::to_string(result.layout.size) + "-state ESKF, " + std::to_string(result.passes_run) + " passes" +
-            (filter.measurements.heading ? ", heading" : ", no heading");
-  if (!state_dir.empty()) {
+  c.model = modelText(result, filter);
+  const Eigen::Index n = result.covariance.rows();
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (Eigen::Index k = 0; k < n; ++k) c.covariance.push_back(result.covariance(i, k));
+  c.information_utime_s = informationTimes(c.names, c.sigmas, filter.carried, in.earlier, t1);
+  if (!in.state_dir.empty()) {
     try {
-      CalibrationStore(state_dir).save(c);
+      CalibrationStore(in.state_dir).save(c);
     } catch (const std::exception& e) {
       out.persist_error = e.what();
     }

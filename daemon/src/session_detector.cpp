@@ -13,7 +13,12 @@ void SessionDetector::reset() {
   block_count_ = 0;
   still_ = false;
   buffer_.clear();
+  store_count_ = 0;
+  store_time_sum_ = 0.0;
+  stored_.reset();
   turned_ = 0.0;
+  moves_ = 0;
+  turn_vector_.setZero();
 }
 
 namespace {
@@ -30,6 +35,7 @@ SessionProgress SessionDetector::progress() const {
   p.phase = phase_;
   p.phase_time = phase_ == SessionPhase::Waiting ? 0.0 : last_t_ - phase_start_;
   p.turned = turned_;
+  p.moves = moves_;
   if (turn_vector_.norm() > 0.0) p.turn_axis = turn_vector_.normalized();
   p.last_rejection = last_rejection_;
   p.rejected = rejected_;
@@ -60,7 +66,8 @@ std::string progressHint(const SessionProgress& p, const SessionDetectorConfig& 
       }
       break;
     case SessionPhase::TrailStill:
-      out << "hold still again: " << p.phase_time << " of " << c.min_still << " s";
+      out << "hold still again: " << p.phase_time << " of " << c.end_still << " s";
+      if (p.phase_time < c.end_still) out << " (or go on with the next move)";
       break;
   }
   return out.str();
@@ -68,6 +75,51 @@ std::string progressHint(const SessionProgress& p, const SessionDetectorConfig& 
 
 void SessionDetector::dropBefore(double t) {
   while (!buffer_.empty() && buffer_.front().t < t) buffer_.pop_front();
+}
+
+void SessionDetector::store(const ImuSample& s) {
+  stored_.reset();
+  if (store_count_ == 0) store_sum_ = ImuSample{0.0, Vec3::Zero(), Vec3::Zero()};
+  store_sum_.accel += s.accel;
+  store_sum_.gyro += s.gyro;
+  store_time_sum_ += s.t;
+  ++store_count_;
+  // A block holds the samples of (end of the last block, + store_block]: whole sample periods, so a
+  // sensor at a multiple of the block rate fills every block alike.
+  if (config_.store_block > 0.0 && s.t - store_block_end_ < config_.store_block * (1.0 - 1e-3)) return;
+  const double n = store_count_;
+  ImuSample mean{store_time_sum_ / n, store_sum_.accel / n, store_sum_.gyro / n};
+  store_count_ = 0;
+  store_time_sum_ = 0.0;
+  store_block_end_ = s.t;
+  // A block that straddles a reset (a gap, a trigger) could stamp a mean before the last kept one.
+  if (!buffer_.empty() && !(mean.t > buffer_.back().t)) return;
+  buffer_.push_back(mean);
+  stored_ = mean;
+}
+
+std::optional<Session> SessionDetector::endSession() {
+  // The end still run goes on after the session and may lead the next one.
+  const auto leadNext = [this] {
+    phase_ = SessionPhase::LeadStill;
+    phase_start_ = still_since_;
+    dropBefore(still_since_ - config_.still.window);
+    turned_ = 0.0;
+    moves_ = 0;
+    turn_vector_.setZero();
+  };
+  if (turned_ < config_.min_turn) {
+    std::ostringstream why;
+    why << (moves_ > 1 ? "turned " : "turn was ") << std::lround(turned_ / kDeg) << " deg";
+    if (moves_ > 1) why << " in " << moves_ << " moves";
+    why << ", need " << std::lround(config_.min_turn / kDeg);
+    reject(why.str());
+    leadNext();
+    return std::nullopt;
+  }
+  Session session{std::vector<ImuSample>(buffer_.begin(), buffer_.end()), turned_, moves_};
+  leadNext();
+  return session;
 }
 
 std::optional<Session> SessionDetector::push(const ImuSample& s) {
@@ -87,20 +139,18 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
     still_ = stats_.isStill(config_.still);
   }
   const bool still = still_;
-  buffer_.push_back(s);
+  const double dt = buffer_.empty() && store_count_ == 0 ? 0.0 : s.t - last_t_;
+  store(s);
   last_t_ = s.t;
   const SessionPhase before = phase_;
 
   switch (phase_) {
     case SessionPhase::Waiting:
+      // Only the last window's worth can become the start of a still run.
+      dropBefore(s.t - config_.still.window);
       if (still) {
         phase_ = SessionPhase::LeadStill;
         still_since_ = s.t;
-        // Keep only the still run's own samples: those of the still window.
-        dropBefore(s.t - config_.still.window);
-      } else {
-        // Only the last window's worth can become the start of a still run.
-        dropBefore(s.t - config_.still.window);
       }
       break;
     case SessionPhase::LeadStill:
@@ -109,8 +159,9 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
         dropBefore(s.t - config_.max_lead_still);
       } else if (s.t - still_since_ >= config_.min_still) {
         phase_ = SessionPhase::Turning;
-        turn_start_ = s.t;
+        turn_start_ = move_start_ = s.t;
         turned_ = 0.0;
+        moves_ = 1;
         turn_vector_.setZero();
       } else {
         std::ostringstream why;
@@ -123,17 +174,17 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
       }
       break;
     case SessionPhase::Turning:
-      if (buffer_.size() >= 2) {
-        const double dt = s.t - buffer_[buffer_.size() - 2].t;
-        turned_ += s.gyro.norm() * dt;
-        turn_vector_ += s.gyro * dt;
-      }
+      turned_ += s.gyro.norm() * dt;
+      turn_vector_ += s.gyro * dt;
       if (still) {
         phase_ = SessionPhase::TrailStill;
         still_since_ = s.t;
-      } else if (s.t - turn_start_ > config_.max_turn_time) {
+      } else if (s.t - move_start_ > config_.max_turn_time || s.t - turn_start_ > config_.max_session_time) {
         std::ostringstream why;
-        why << "the motion went on for more than " << config_.max_turn_time << " s without a still pause";
+        if (s.t - move_start_ > config_.max_turn_time)
+          why << "the motion went on for more than " << config_.max_turn_time << " s without a still pause";
+        else
+          why << "the session went on for more than " << config_.max_session_time << " s without a still end";
         const std::string reason = why.str();
         reset();
         reject(reason);
@@ -141,31 +192,16 @@ std::optional<Session> SessionDetector::push(const ImuSample& s) {
       break;
     case SessionPhase::TrailStill:
       if (!still) {
-        // Motion again: a short pause inside the turn, keep counting it as turning.
+        // Motion again after a pause: the next move of the same session.
         phase_ = SessionPhase::Turning;
-      } else if (s.t - still_since_ >= config_.min_still) {
-        if (turned_ < config_.min_turn) {
-          std::ostringstream why;
-          why << "turn was " << std::lround(turned_ / kDeg) << " deg, need " << std::lround(config_.min_turn / kDeg);
-          reject(why.str());
-          // Not a calibration turn: this still run can lead the next session.
-          phase_ = SessionPhase::LeadStill;
-          phase_start_ = still_since_;
-          dropBefore(still_since_ - config_.still.window);
-          turned_ = 0.0;
-          return std::nullopt;
-        }
-        Session session{std::vector<ImuSample>(buffer_.begin(), buffer_.end()), turned_};
-        // The trailing still run goes on and may lead the next session.
-        phase_ = SessionPhase::LeadStill;
-        phase_start_ = still_since_;
-        dropBefore(still_since_ - config_.still.window);
-        turned_ = 0.0;
-        return session;
+        move_start_ = s.t;
+        ++moves_;
+      } else if (s.t - still_since_ >= config_.end_still) {
+        return endSession();
       }
       break;
   }
-  // A pause inside the turn does not restart its clock.
+  // The session's clock runs from its first move, over its pauses.
   if (phase_ != before) phase_start_ = phase_ == SessionPhase::Turning ? turn_start_ : s.t;
   return std::nullopt;
 }

@@ -183,15 +183,16 @@ TEST(DaemonLcm, BatchedSamplesCalibrateAsSingleOnes) {
 }
 
 // While the user moves the device the daemon says, a few times a second, where the session stands: a turn
-// too small (210 deg) is refused with how far it went, then a full turn goes through hold still -> turn ->
-// hold still again, with the angle about body z growing.
+// too small (210 deg) is refused with how far it went once the device has been still for end_still (a
+// shorter pause would join it to the next turn as one session), then a full turn goes through hold still ->
+// turn -> hold still again, with the angle about body z growing.
 TEST(DaemonLcm, ProgressGuidesThroughARefusedAndAnAcceptedTurn) {
   sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 53);
   const auto still = [](double d) { return sim::Segment{sim::SegmentKind::Still, d, Vec3::UnitZ(), 0.0, sim::RateProfile::RaisedCosine}; };
   const auto turn = [](double deg, double d) {
     return sim::Segment{sim::SegmentKind::Rotate, d, Vec3::UnitZ(), deg * units::deg, sim::RateProfile::RaisedCosine};
   };
-  sc.motion.segments = {still(6), turn(210, 6), still(6), turn(360, 10), still(6)};
+  sc.motion.segments = {still(6), turn(210, 6), still(8), turn(360, 10), still(8)};
   const sim::SimOutput out = sim::simulate(sc, 53);
   MemqDaemon d;
   std::size_t h = 0;
@@ -203,8 +204,8 @@ TEST(DaemonLcm, ProgressGuidesThroughARefusedAndAnAcceptedTurn) {
     }
   }
   const auto& p = d.collector.progress;
-  // 5 Hz of data time over 34 s.
-  EXPECT_NEAR(static_cast<double>(p.size()), 34.0 * 5.0, 3.0);
+  // 5 Hz of data time over 38 s.
+  EXPECT_NEAR(static_cast<double>(p.size()), 38.0 * 5.0, 3.0);
   const auto at = [&](double t) -> const imucal::session_progress_t& {
     std::size_t best = 0;
     for (std::size_t i = 0; i < p.size(); ++i)
@@ -218,38 +219,38 @@ TEST(DaemonLcm, ProgressGuidesThroughARefusedAndAnAcceptedTurn) {
   EXPECT_EQ(at(9.0).hint.rfind("keep turning: ", 0), 0u) << at(9.0).hint;
   EXPECT_NEAR(at(9.0).turned_deg, 105.0, 10.0);  // half of the 210 deg turn
   // After the small turn's trailing still: refused, and why.
-  EXPECT_EQ(at(17.0).rejected, 1);
-  EXPECT_EQ(at(17.0).last_rejection.rfind("turn was 2", 0), 0u) << at(17.0).last_rejection;
-  EXPECT_NE(at(17.0).last_rejection.find("need 300"), std::string::npos);
-  EXPECT_EQ(at(23.0).phase, P::PHASE_TURNING);
-  EXPECT_NEAR(at(23.0).turned_deg, 180.0, 10.0);
-  EXPECT_GT(at(23.0).turn_axis[2], 0.999);
-  EXPECT_EQ(at(29.5).phase, P::PHASE_HOLD_STILL_AGAIN);
-  EXPECT_EQ(at(29.5).hint.rfind("hold still again: ", 0), 0u) << at(29.5).hint;
+  EXPECT_EQ(at(19.0).rejected, 1);
+  EXPECT_EQ(at(19.0).last_rejection.rfind("turn was 2", 0), 0u) << at(19.0).last_rejection;
+  EXPECT_NE(at(19.0).last_rejection.find("need 300"), std::string::npos);
+  EXPECT_EQ(at(25.0).phase, P::PHASE_TURNING);
+  EXPECT_NEAR(at(25.0).turned_deg, 180.0, 10.0);
+  EXPECT_GT(at(25.0).turn_axis[2], 0.999);
+  EXPECT_EQ(at(31.5).phase, P::PHASE_HOLD_STILL_AGAIN);
+  EXPECT_EQ(at(31.5).hint.rfind("hold still again: ", 0), 0u) << at(31.5).hint;
   // The running estimate: none while still, one while turning (the refused turn's too), holding the
   // truth within its sigma and shrinking towards what the session will give.
   EXPECT_EQ(at(5.0).num_params, 0);
   // The biases and, with gravity unknown to the default config, its magnitude's error.
   EXPECT_EQ(at(9.0).num_params, 7);
-  EXPECT_EQ(at(17.0).num_params, 0);
+  EXPECT_EQ(at(19.0).num_params, 0);
   const Vec3 gyro_bias = out.applied_errors.gyro.bias;
-  for (double t : {23.0, 26.0, 29.5}) {
+  for (double t : {25.0, 28.0, 31.5}) {
     const P& m = at(t);
     ASSERT_EQ(m.num_params, 7) << t;
     ASSERT_EQ(m.param_names[3], "gyro_bias_x");
     // From the start of the still run that leads the turn: the refused turn's trailing still, from 12 s
-    // less the still test's 0.5 s window.
+    // less the still test's 0.5 s window, kept for at most max_lead_still (10 s) before the turn at 20 s.
     EXPECT_NEAR(m.estimate_time_s, t - 11.5, 0.3);
     for (int i = 0; i < 3; ++i) {
       EXPECT_LT(std::abs(m.values[3 + i] - gyro_bias(i)), 4.0 * m.sigmas[3 + i]) << t << " " << i;
       EXPECT_LT(m.sigmas[3 + i], m.prior_sigmas[3 + i]) << t << " " << i;
     }
   }
-  for (int i = 0; i < 2; ++i) EXPECT_LT(at(29.5).sigmas[3 + i], 0.1 * at(29.5).prior_sigmas[3 + i]) << i;
-  EXPECT_LT(at(29.5).sigmas[3], at(23.0).sigmas[3]);
+  for (int i = 0; i < 2; ++i) EXPECT_LT(at(31.5).sigmas[3 + i], 0.1 * at(31.5).prior_sigmas[3 + i]) << i;
+  EXPECT_LT(at(31.5).sigmas[3], at(25.0).sigmas[3]);
   // After the session, the planner's advice: gravity was not given, so the level turn left the z
   // accelerometer bias and gravity as one number; before it there was none.
-  EXPECT_EQ(at(17.0).advice, "");
+  EXPECT_EQ(at(19.0).advice, "");
   EXPECT_EQ(p.back().phase, P::PHASE_HOLD_STILL);
   EXPECT_NE(p.back().advice.find("turn it once about the vertical (reveals "), std::string::npos) << p.back().advice;
   EXPECT_NE(p.back().advice.find("accel_bias_z"), std::string::npos) << p.back().advice;

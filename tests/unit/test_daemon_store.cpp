@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 class DaemonStore : public ::testing::Test {
  protected:
   StoredCalibration sample() const {
-    return {"imu0", 1.7e9, {"accel_bias_x", "gyro_bias_z"}, {0.44, -1.2e-3}, {1e-3, 2e-4}, {true, false}, {4.5, -1.0},
-            "15-state"};
+    return {"imu0",      1.7e9,       {"accel_bias_x", "gyro_bias_z"}, {0.44, -1.2e-3}, {1e-3, 2e-4}, {true, false},
+            {4.5, -1.0}, "15-state", {1e-6, 3e-8, 3e-8, 4e-8},         {1.7e9 - 3600.0, 1.7e9}};
   }
   std::string read(const std::string& path) const {
     std::ifstream in(path);
@@ -46,6 +46,8 @@ TEST_F(DaemonStore, RoundTripLeavesNoTemporaryFile) {
   EXPECT_EQ(loaded->convergence_time_s, sample().convergence_time_s);
   EXPECT_EQ(loaded->model, "15-state");
   EXPECT_DOUBLE_EQ(loaded->utime_s, 1.7e9);
+  EXPECT_EQ(loaded->covariance, sample().covariance);
+  EXPECT_EQ(loaded->information_utime_s, sample().information_utime_s);
   int files = 0;
   for (const auto& e : fs::directory_iterator(dir_)) files += e.path().extension() == ".tmp" ? 100 : 1;
   EXPECT_EQ(files, 1);
@@ -63,6 +65,22 @@ TEST_F(DaemonStore, FileWithoutConvergenceTimesLoadsThemAsUnknown) {
   ASSERT_TRUE(loaded.has_value());
   EXPECT_EQ(loaded->values, sample().values);
   EXPECT_EQ(loaded->convergence_time_s, (std::vector<double>{-1.0, -1.0}));
+  // Nor a covariance (so nothing is carried into the next session) or information times (the file's own).
+  EXPECT_TRUE(loaded->covariance.empty());
+  EXPECT_EQ(loaded->information_utime_s, (std::vector<double>{1.7e9, 1.7e9}));
+}
+
+TEST_F(DaemonStore, ACovarianceOfTheWrongSizeIsRefusedNamingIt) {
+  StoredCalibration c = sample();
+  c.covariance.pop_back();
+  CalibrationStore store(dir_.string());
+  store.save(c);
+  try {
+    store.load("imu0");
+    FAIL() << "loaded a 3-entry covariance of 2 parameters";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("covariance has 3 entries for 2 parameters"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(DaemonStore, MissingIsAbsent) { EXPECT_FALSE(CalibrationStore(dir_.string()).load("nobody").has_value()); }

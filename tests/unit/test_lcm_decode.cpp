@@ -34,6 +34,7 @@ imucal::calibration_t calibration() {
   m.sigmas = {1e-3, 2e-4};
   m.converged = {true, false};
   m.convergence_time_s = {4.5, -1.0};
+  m.information_age_s = {0.0, 120.0};
   return m;
 }
 

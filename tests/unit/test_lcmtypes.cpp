@@ -66,6 +66,7 @@ imucal::calibration_t makeCalibration() {
   m.sigmas = {1e-4, 7e-5, 9.75e-4};
   m.converged = {1, 0, 1};
   m.convergence_time_s = {4.5, -1.0, 17.25};
+  m.information_age_s = {0.0, 3600.5, 0.0};
   return m;
 }
 
@@ -150,6 +151,7 @@ void expectEqual(const imucal::calibration_t& a, const imucal::calibration_t& b)
   EXPECT_EQ(a.sigmas, b.sigmas);
   EXPECT_EQ(a.converged, b.converged);
   EXPECT_EQ(a.convergence_time_s, b.convergence_time_s);
+  EXPECT_EQ(a.information_age_s, b.information_age_s);
 }
 
 void expectEqual(const imucal::daemon_status_t& a, const imucal::daemon_status_t& b) {
@@ -252,6 +254,7 @@ TEST(LcmTypes, CalibrationWithoutParamsRoundTrip) {
   m.sigmas.clear();
   m.converged.clear();
   m.convergence_time_s.clear();
+  m.information_age_s.clear();
   expectEqual(roundTrip(m), m);
 }
 

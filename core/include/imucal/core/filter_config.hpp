@@ -70,8 +70,21 @@ struct MeasurementConfig {
   bool free_moves = false;
 };
 
+// What earlier calibrations of the same sensor found, carried into the next one as its prior (the daemon's
+// carry-over): for the parameters it names, its mean and covariance replace the registry's prior mean and
+// sigma, correlations included, so a session adds its information to what was known instead of starting
+// over. "Converged" is still judged against the registry's prior (a parameter known from before stays
+// known), and the halves check runs without it (two halves sharing it would agree by construction).
+struct CarriedPrior {
+  std::vector<std::string> names;  // StateLayout::paramNames; names the layout does not have are ignored
+  VecX mean;                       // SI
+  MatX covariance;                 // SI, names.size() square
+  bool empty() const { return names.empty(); }
+};
+
 struct FilterConfig {
   ModelOptions model;
+  CarriedPrior carried;
   NoiseConfig noise;
   PriorConfig prior;
   MeasurementConfig measurements;

@@ -23,6 +23,7 @@ struct MeasurementStats {
   long heading_steep = 0;         // the body x axis too steep for a heading (heading_max_elevation): not used
   double heading_nis_mean = 0.0;  // mean normalized innovation squared (1 when consistent)
   double velocity_nis_mean = 0.0; // per component
+  double position_nis_mean = 0.0; // per component
 };
 
 // Levels the filter on the still stretch at the start of imu (see alignInitialState), places the IMU at
@@ -63,7 +64,7 @@ class FilterStepper {
   std::size_t steps_ = 0;
   ImuSample previous_;
   bool has_previous_ = false;
-  double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0;
+  double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0, position_nis_sum_ = 0.0;
   MeasurementStats stats_;
 };
 

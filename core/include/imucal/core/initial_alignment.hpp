@@ -33,8 +33,11 @@ AlignmentWindow findAlignmentWindow(const std::vector<ImuSample>& imu, double du
 // start position, and the two errors are one (dp0 = C dr), not independent. No-op without the block.
 void correlateStartWithLeverArm(StateMat& P, const StateLayout& layout, const Mat3& c_bn);
 
-// Prior covariance; yaw_variance is the variance of the initial yaw (rad^2).
+// Prior covariance; yaw_variance is the variance of the initial yaw (rad^2). The parameters' block is the
+// registry's, replaced by config.carried where that names them.
 StateMat priorCovariance(const FilterConfig& config, const StateLayout& layout, double yaw_variance);
+// The registry's prior sigma of each parameter, whatever was carried: what "converged" is judged against.
+VecX registryPriorSigma(const FilterConfig& config, const StateLayout& layout);
 
 // Roll and pitch from the mean specific force of the first config.alignment_time seconds (corrected with
 // params), yaw from the circular mean of the heading samples in that window (variance sigma^2 / N), or

@@ -1,6 +1,9 @@
 #pragma once
 // Between the filter's parameter vector (the state's calibration blocks, in registry order) and the
 // sensor model it stands for. The only code that maps a registry entry to a field of the sensor model.
+#include <vector>
+
+#include "imucal/core/filter_config.hpp"
 #include "imucal/core/sensor_model.hpp"
 #include "imucal/core/state_layout.hpp"
 #include "imucal/core/types.hpp"
@@ -22,5 +25,9 @@ CalibrationParams toCalibrationParams(const StateLayout& layout, const VecX& par
 VecX toParamVector(const StateLayout& layout, const CalibrationParams& p);
 // Prior means of the state's parameters.
 VecX priorMean(const StateLayout& layout, const ModelOptions& options);
+// The same, with config.carried's means where it names a parameter.
+VecX priorMean(const StateLayout& layout, const FilterConfig& config);
+// Index in the layout's parameters of each name carried, -1 where the layout has no such parameter.
+std::vector<int> carriedIndices(const StateLayout& layout, const CarriedPrior& carried);
 
 }  // namespace imucal

@@ -27,7 +27,9 @@ struct ServiceConfig {
   InputGateConfig gate;
   SessionDetectorConfig session;
   std::string state_dir;          // empty: do not persist
-  double heading_keep = 120.0;    // s of heading samples kept for the next session
+  // s of heading samples kept: the longest session (its lead still, moves and end still) must fit.
+  double heading_keep = 240.0;
+  CarryOverConfig carry_over;     // each session starts from the sensor's last calibration
   // Sensor ids accepted; samples of any other id are counted and dropped. Empty: every id is a sensor.
   std::vector<std::string> sensors;
   // With an empty `sensors`: the first ids seen, at most this many, are sensors; the rest are counted as
@@ -57,6 +59,7 @@ struct SensorReport {
   std::uint64_t heading_accepted = 0, heading_rejected = 0;
   MeasurementStats last_stats;
   std::string advice;             // what to do next, after the last session (see motion_planner.hpp)
+  std::vector<std::string> notes; // how the last session was calibrated when not as configured
 };
 
 class CalibrationService {

@@ -18,6 +18,12 @@ struct StoredCalibration {
   std::vector<bool> converged;
   std::vector<double> convergence_time_s;  // s from the session's first sample; -1 where not converged
   std::string model;
+  // The parameters' covariance (SI, row-major, names.size() square), which the next session starts from
+  // (carry_over.hpp); empty in files written before it was kept.
+  std::vector<double> covariance;
+  // When the data behind each parameter were taken (the sample clock of utime_s): an earlier session's
+  // time where this one did not narrow what was carried. Absent in older files: utime_s for every one.
+  std::vector<double> information_utime_s;
 };
 
 class CalibrationStore {

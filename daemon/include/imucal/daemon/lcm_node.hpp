@@ -73,6 +73,8 @@ class LcmNode {
   void publishStatuses(double data_now, std::int64_t utime);
   void publishStatus(const SensorReport& report, double data_now, std::int64_t utime);
   void publishProgress(std::int64_t utime);
+  // How the last session was calibrated when not as configured (SensorReport::notes), once per session.
+  static void logNotes(const std::string& id, const SensorReport& report);
   double age(double since) const;
 
   lcm::LCM& lcm_;

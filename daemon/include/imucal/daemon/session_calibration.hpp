@@ -7,6 +7,7 @@
 
 #include "imucal/core/calibrator.hpp"
 #include "imucal/daemon/calibration_store.hpp"
+#include "imucal/daemon/carry_over.hpp"
 
 namespace imucal::daemon {
 
@@ -19,12 +20,24 @@ struct SessionOutcome {
   // What to do next to reveal what this session left unknown (see motion_planner.hpp); empty when the
   // session gave no result to plan from.
   std::string advice;
+  // How the session was calibrated, when not as configured: the earlier calibration not carried because
+  // this session contradicts it, the centre found moving (calibrated as free moves).
+  std::vector<std::string> notes;
 };
 
-// Heading samples outside the session's time span are ignored; none at all: calibrated without heading.
-// Persists into `state_dir` (unless empty) when the session converged.
-SessionOutcome calibrateSession(const std::string& sensor_id, const std::vector<ImuSample>& imu,
-                                const std::vector<HeadingSample>& heading, FilterConfig filter,
-                                const std::string& state_dir);
+struct SessionInput {
+  std::string sensor_id;
+  std::vector<ImuSample> imu;
+  std::vector<HeadingSample> heading;  // those outside the session's span are ignored; none: no heading
+  FilterConfig filter;
+  std::string state_dir;               // persisted there (unless empty) when the session converged
+  std::optional<StoredCalibration> earlier;  // the sensor's last calibration, carried on (carry_over.hpp)
+  CarryOverConfig carry_over;
+};
+
+// Calibrated from the earlier calibration as its prior; if the session's innovations contradict the model
+// that way, from the session alone; if the zero-velocity ones still do (the hand carried the device
+// between poses instead of turning it about a centre), as free moves. Each fallback is named in `notes`.
+SessionOutcome calibrateSession(const SessionInput& in);
 
 }  // namespace imucal::daemon
