@@ -77,11 +77,15 @@ struct PassOutput {
   std::vector<Eskf::Innovation> innovations;
   std::vector<WhitenessGroup> whiteness;
   IncrementConsistency increments;
+  std::vector<StepNis> free_step_nis;  // when probed (see FilterStepper::probeFreeSteps)
 };
 
+// held: per sample, whether the centre is at rest (with free_moves, where zero velocity holds); still: per
+// sample, for the history.
 PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
-                   const std::vector<bool>& still, std::size_t per_step, const FilterConfig& config, const VecX& params0,
-                   const VecX& prior_mean, bool feedback, bool keep_innovations, std::size_t max_history_epochs) {
+                   const std::vector<bool>& still, const std::vector<bool>& held, std::size_t per_step,
+                   const FilterConfig& config, const VecX& params0, const VecX& prior_mean, bool feedback,
+                   bool keep_innovations, std::size_t max_history_epochs, bool probe_free_steps) {
   const auto& m = config.measurements;
   Eskf filter(config);
   const StateLayout& layout = filter.layout();
@@ -102,6 +106,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
       max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (steps + max_history_epochs - 1) / max_history_epochs);
   out.history.reserve(steps / stride + 2);
   FilterStepper stepper(filter, m, per_step);
+  stepper.probeFreeSteps(probe_free_steps);
   if (use_heading) {
     const HeadingErrors heading_errors{m.heading_bias, m.heading_latency};
     for (std::size_t i = init.first_unused_heading; i < heading.size(); ++i)
@@ -123,7 +128,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   };
   record(0);
   for (std::size_t k = 1; k < imu.size(); ++k) {
-    const bool stepped = stepper.addImu(imu[k], k + 1 == imu.size(), still[k]);
+    const bool stepped = stepper.addImu(imu[k], k + 1 == imu.size(), held[k]);
     // NaN never turns finite again, so checking the recorded epochs (always the last) misses none.
     if (stepped && (stepper.steps() % stride == 0 || stepper.steps() == steps)) record(k);
   }
@@ -133,6 +138,52 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   out.log_likelihood = filter.logLikelihood();
   out.whiteness = whiteness.report();
   out.increments = increments.report();
+  out.free_step_nis = stepper.freeStepNis();
+  return out;
+}
+
+// A pass that moves no estimate by more than this many sigma ends the refinement.
+constexpr double kSettledStep = 0.05;
+
+struct PassesOutput {
+  PassOutput pass;  // the last
+  VecX step, previous_step;  // each pass's step per parameter in sigma, the last two
+  bool settled = false;
+  int passes_run = 0;
+};
+
+// Every pass keeps the original prior: later passes only move the point the model is linearized at, so a
+// direction the data cannot see stays at its prior however many passes run.
+PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                       const std::vector<bool>& still, const std::vector<bool>& held, std::size_t per_step,
+                       const FilterConfig& config, const StateLayout& layout, const VecX& prior_mean,
+                       const CalibrateOptions& options, bool probe_free_steps) {
+  PassesOutput out;
+  VecX params = prior_mean;
+  // Where the passes run out before they settle, the last two steps say how far the estimate still had to go.
+  out.step = VecX::Zero(layout.paramCount());
+  out.previous_step = out.step;
+  out.settled = config.passes == 1;
+  for (int i = 0; i < config.passes; ++i) {
+    // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
+    // about the dead-reckoned trajectory of the previous pass's parameters.
+    const bool feedback = i == 0 || !config.open_loop_refinement;
+    out.pass = runPass(imu, heading, still, held, per_step, config, params, i == 0 ? VecX() : prior_mean, feedback,
+                       options.keep_innovations, options.max_history_epochs, probe_free_steps);
+    const VecX sigma = paramSigmas(out.pass.P, layout);
+    out.previous_step = out.step;
+    out.step = (out.pass.params - params).cwiseQuotient(sigma);
+    out.passes_run = i + 1;
+    // A step that reverses the previous one overshot the point where a pass returns what it started from;
+    // if it is not much shorter, taking it whole can swing about that point for ever, half of it closes in.
+    const bool overshot = i > 0 && out.step.dot(out.previous_step) < 0.0 && out.step.norm() > 0.5 * out.previous_step.norm();
+    params = overshot ? VecX(params + 0.5 * (out.pass.params - params)) : out.pass.params;
+    // Later passes only re-linearize; once the estimates stop moving they add nothing.
+    if (i > 0 && out.step.cwiseAbs().maxCoeff() < kSettledStep) {
+      out.settled = true;
+      break;
+    }
+  }
   return out;
 }
 
@@ -206,9 +257,6 @@ void inflateForConsistency(CalibrationResult& result) {
     result.warnings.push_back(msg.str());
   }
 }
-
-// A pass that moves no estimate by more than this many sigma ends the refinement.
-constexpr double kSettledStep = 0.05;
 
 // The passes ran out while estimates still moved (steps signed, in sigma). Steps that alternate in sign
 // bracket the point the passes lead to, so at most the last step is left; steps the same way shrinking by
@@ -334,35 +382,24 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   result.names = layout.paramNames();
   result.prior_sigma = registryPriorSigma(config, layout);
 
-  // Every pass keeps the original prior: later passes only move the point the model is linearized at, so a
-  // direction the data cannot see stays at its prior however many passes run.
   const VecX prior_mean = priorMean(layout, config);
-  VecX params = prior_mean;
-  PassOutput pass;
-  // Each pass's step per parameter in sigma, the last two kept: where the passes run out before they settle
-  // they say how far the estimate still had to go.
-  VecX step = VecX::Zero(layout.paramCount()), previous_step = step;
-  bool settled = config.passes == 1;
-  for (int i = 0; i < config.passes; ++i) {
-    // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
-    // about the dead-reckoned trajectory of the previous pass's parameters.
-    const bool feedback = i == 0 || !config.open_loop_refinement;
-    pass = runPass(imu, heading, still, per_step, config, params, i == 0 ? VecX() : prior_mean, feedback,
-                   options.keep_innovations, options.max_history_epochs);
-    const VecX sigma = paramSigmas(pass.P, layout);
-    previous_step = step;
-    step = (pass.params - params).cwiseQuotient(sigma);
-    result.passes_run = i + 1;
-    // A step that reverses the previous one overshot the point where a pass returns what it started from;
-    // if it is not much shorter, taking it whole can swing about that point for ever, half of it closes in.
-    const bool overshot = i > 0 && step.dot(previous_step) < 0.0 && step.norm() > 0.5 * previous_step.norm();
-    params = overshot ? VecX(params + 0.5 * (pass.params - params)) : pass.params;
-    // Later passes only re-linearize; once the estimates stop moving they add nothing.
-    if (i > 0 && step.cwiseAbs().maxCoeff() < kSettledStep) {
-      settled = true;
-      break;
-    }
+  const auto& m = config.measurements;
+  // Under free moves, the moves whose centre stayed at rest hold zero velocity throughout: found with a
+  // calibration that holds it at the stills only, then calibrated again (free_moves.hpp).
+  const bool classify = m.free_moves && m.hold_turns && m.zero_velocity;
+  PassesOutput passes = runPasses(imu, heading, still, still, per_step, config, layout, prior_mean, options, classify);
+  if (classify) {
+    result.moves = findMoves(imu, still);
+    classifyMoves(result.moves, passes.pass.free_step_nis);
+    if (std::any_of(result.moves.begin(), result.moves.end(), [](const Move& mv) { return mv.held; }))
+      passes = runPasses(imu, heading, still, heldSamples(still, result.moves), per_step, config, layout, prior_mean,
+                         options, false);
   }
+  PassOutput& pass = passes.pass;
+  const VecX& step = passes.step;
+  const VecX& previous_step = passes.previous_step;
+  const bool settled = passes.settled;
+  result.passes_run = passes.passes_run;
 
   result.estimate = pass.params;
   result.sigma = paramSigmas(pass.P, layout);

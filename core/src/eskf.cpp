@@ -173,6 +173,15 @@ double Eskf::updateZeroVelocity(double sigma) {
   return nis;
 }
 
+double Eskf::zeroVelocityNis(double sigma) const {
+  // On a copy that tells no observer: the update's own code, so the test sees exactly what it would apply.
+  Eskf trial = *this;
+  trial.sink_ = nullptr;
+  trial.whiteness_ = nullptr;
+  trial.increments_ = nullptr;
+  return trial.updateZeroVelocity(sigma);
+}
+
 double Eskf::updateConstantPosition(const Vec3& p_ref, double sigma) {
   const Vec3& r = model_.lever_arm;
   if (!r.isZero() || layout_.has(ParamBlock::LeverArm)) {

@@ -45,7 +45,7 @@ void FilterStepper::applyHeading(double value) {
   filter_.correct();
 }
 
-bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool still) {
+bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool held) {
   const bool last = ++in_step_ == per_step_ || end_step;
   // A heading inside the step splits it: the filter is brought to its time and updated there. One at the
   // step's last sample waits for the pseudo-observations, as at the sample itself.
@@ -67,13 +67,15 @@ bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool still) {
   if (!at_sample) pending_.push_back(s);
   previous_ = s;
   if (!last) return false;
-  endStep(still);
+  endStep(held);
   return true;
 }
 
-void FilterStepper::endStep(bool still) {
+void FilterStepper::endStep(bool held) {
   if (!pending_.empty()) flush();
-  if (m_.zero_velocity && (still || !m_.free_moves)) {
+  if (probe_ && m_.zero_velocity && m_.free_moves && !held)
+    free_step_nis_.push_back({filter_.time(), filter_.zeroVelocityNis(m_.zero_velocity_sigma) / 3.0});
+  if (m_.zero_velocity && (held || !m_.free_moves)) {
     velocity_nis_sum_ += filter_.updateZeroVelocity(m_.zero_velocity_sigma);
     ++stats_.zero_velocity_updates;
     stats_.velocity_nis_mean = velocity_nis_sum_ / (3.0 * static_cast<double>(stats_.zero_velocity_updates));

@@ -108,7 +108,7 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
       if (layout.hasCentre()) hrow(layout.centre() + centre_index) = -1.0;
       josephScalarUpdate(P, hrow, sigma * sigma, K, s, mask);
     };
-    if (m.zero_velocity && (traj[k].still || !m.free_moves)) {
+    if (m.zero_velocity && (traj[k].still || !m.free_moves || (m.hold_turns && traj[k].held))) {
       const Mat3 jv = -c * skew(traj[k].w_b);
       for (int i = 0; i < 3; ++i) update(StateLayout::kVel + i, 3 + i, jv, i, m.zero_velocity_sigma);
     }

@@ -196,6 +196,7 @@ bool CalibrationService::finishSession(const std::string& id, const Session& ses
   SessionInput in;
   in.sensor_id = id;
   in.imu = session.imu;
+  in.moves = session.moves;
   in.heading.assign(headings_.begin(), headings_.end());
   in.filter = config_.filter;
   in.state_dir = config_.state_dir;

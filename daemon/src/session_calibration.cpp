@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <exception>
+#include <optional>
 #include <sstream>
 
 #include "imucal/core/consistency.hpp"
+#include "imucal/core/free_moves.hpp"
 #include "imucal/core/motion_planner.hpp"
 
 namespace imucal::daemon {
@@ -25,11 +27,45 @@ CalibrationResult run(const SessionInput& in, const std::vector<HeadingSample>& 
   return calibrate(in.imu, heading, filter, options);
 }
 
+// A session of several moves under a centre config: the hand may have carried the device between them.
+// Calibrated as free moves, which finds the moves that held their centre (free_moves.hpp); that result
+// when some did not, with a note saying which; nothing when all held (the centre config then fits).
+std::optional<CalibrationResult> asFreeMovesIfCarried(const SessionInput& in, const std::vector<HeadingSample>& heading,
+                                                      FilterConfig& filter, SessionOutcome& out) {
+  const MeasurementConfig& m = filter.measurements;
+  if (m.free_moves || !m.zero_velocity || in.moves == 1) return std::nullopt;
+  FilterConfig free = filter;
+  free.measurements.free_moves = true;
+  free.measurements.hold_turns = true;
+  CalibrationResult moved;
+  try {
+    moved = run(in, heading, free);
+  } catch (const std::exception&) {
+    return std::nullopt;  // the configured calibration says why, if it fails too
+  }
+  std::ostringstream list;
+  list.precision(2);
+  int carried = 0;
+  for (std::size_t i = 0; i < moved.moves.size(); ++i) {
+    if (moved.moves[i].held) continue;
+    list << (carried++ > 0 ? ", " : "") << i + 1 << " (NIS " << moved.moves[i].velocity_nis << ")";
+  }
+  if (carried == 0 || !inconsistencies(moved).empty()) return std::nullopt;
+  std::ostringstream note;
+  note << "calibrated as free moves: " << carried << " of " << moved.moves.size()
+       << " moves carried the device (zero-velocity NIS above " << kHeldMoveNisLimit << "): moves " << list.str()
+       << "; zero velocity held through the others";
+  out.notes.push_back(note.str());
+  filter = free;
+  return moved;
+}
+
 // The calibration with what was known before, falling back as calibrateSession says; throws what the
 // last attempt threw.
 CalibrationResult calibrateWithFallbacks(const SessionInput& in, const std::vector<HeadingSample>& heading,
                                          FilterConfig& filter, SessionOutcome& out) {
-  CalibrationResult result = run(in, heading, filter);
+  std::optional<CalibrationResult> free = asFreeMovesIfCarried(in, heading, filter, out);
+  CalibrationResult result = free ? std::move(*free) : run(in, heading, filter);
   if (!filter.carried.empty()) {
     const CarriedMisfit misfit = carriedMisfit(filter.carried, result.names, result.estimate, result.covariance);
     std::string why;
@@ -54,12 +90,13 @@ CalibrationResult calibrateWithFallbacks(const SessionInput& in, const std::vect
     std::ostringstream why;
     why << "calibrated as free moves: turned about a fixed centre the zero-velocity mean NIS was "
         << result.stats.velocity_nis_mean << " (the device was carried between poses)";
-    FilterConfig free = filter;
-    free.measurements.free_moves = true;
-    CalibrationResult moved = run(in, heading, free);
+    FilterConfig moves = filter;
+    moves.measurements.free_moves = true;
+    moves.measurements.hold_turns = true;
+    CalibrationResult moved = run(in, heading, moves);
     if (inconsistencies(moved).empty() && moved.stats.velocity_nis_mean < result.stats.velocity_nis_mean) {
       out.notes.push_back(why.str());
-      filter = free;
+      filter = moves;
       result = std::move(moved);
     }
   }

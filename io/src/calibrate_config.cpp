@@ -205,6 +205,7 @@ void readMeasurements(YamlSection s, MeasurementConfig& m) {
   c.frequency = s.number("centre_frequency_hz", c.frequency, Range::positive());
   m.heading = s.boolean("heading", m.heading);
   m.free_moves = s.boolean("free_moves", m.free_moves);
+  m.hold_turns = s.boolean("hold_turns", m.hold_turns);
   s.finish();
 }
 

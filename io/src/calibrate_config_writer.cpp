@@ -124,6 +124,7 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   emitNumber(out, "centre_frequency_hz", f.measurements.centre_motion.frequency);
   emitBool(out, "heading", f.measurements.heading);
   emitBool(out, "free_moves", f.measurements.free_moves);
+  emitBool(out, "hold_turns", f.measurements.hold_turns);
   out << YAML::EndMap;
 
   out << YAML::Key << "model" << YAML::Value << YAML::BeginMap;

@@ -68,6 +68,12 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
               {"duration_s", numberOrNull(result.duration)},
               {"warnings", result.warnings},
               {"sigma_inflation", numberOrNull(result.sigma_inflation)}};
+  if (!result.moves.empty()) {
+    json moves = json::array();
+    for (const Move& mv : result.moves)
+      moves.push_back({{"t0_s", mv.t0}, {"t1_s", mv.t1}, {"velocity_nis", numberOrNull(mv.velocity_nis)}, {"held", mv.held}});
+    out["moves"] = moves;
+  }
   const WhiteNoiseEstimate& m = result.noise_measured;
   json noise = {{"source", m.valid ? "still stretches of the recording" : "config"},
                 {"vrw_m_per_s_per_sqrt_h", numberOrNull(result.noise_used.accel_white / units::m_per_s_per_sqrt_h)},

@@ -159,6 +159,7 @@ TruthState Motion::at(double t) const {
       carried_p = start_positions_[static_cast<std::size_t>(k)] + seg.translation * (tau / seg.duration - std::sin(w * tau) / kTwoPi);
       carried_v = seg.translation * ((1.0 - std::cos(w * tau)) / seg.duration);
       carried_a = seg.translation * (w * std::sin(w * tau) / seg.duration);
+      s.carried = inside && seg.translation != Vec3::Zero();
     } else {
       carried_p = start_positions_[static_cast<std::size_t>(k)];
     }

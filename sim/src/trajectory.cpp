@@ -5,9 +5,10 @@ namespace imucal::sim {
 std::vector<TrajectoryPoint> toTrajectory(const std::vector<TruthState>& truth) {
   std::vector<TrajectoryPoint> out;
   out.reserve(truth.size());
-  // Still: neither turning nor carried (Earth rate aside), as the static detector would call it.
+  // Still: neither turning nor carried (Earth rate aside), as the static detector would call it. Held: the
+  // centre at rest for the whole segment.
   for (const auto& s : truth)
-    out.push_back({s.t, s.q_nb, s.f_b, s.omega_ib_b, s.omega_b.norm() < 1e-9 && s.v_n.norm() < 1e-9});
+    out.push_back({s.t, s.q_nb, s.f_b, s.omega_ib_b, s.omega_b.norm() < 1e-9 && s.v_n.norm() < 1e-9, !s.carried});
   return out;
 }
 

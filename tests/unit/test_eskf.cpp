@@ -132,6 +132,28 @@ TEST(Eskf, ZeroVelocityUpdateWithDiagonalCovarianceHalvesTheError) {
   EXPECT_LT((f.estimatedNav().v - 0.5 * nav.v).norm(), 1e-15);
 }
 
+// The probe of free_moves.hpp: the NIS the update would give (with P_vv = r: |v|^2 / 2r, by hand), the
+// filter and every observer of its updates left as they were.
+TEST(Eskf, ZeroVelocityProbeSaysWhatTheUpdateWouldAndChangesNothing) {
+  FilterConfig cfg;
+  Eskf f(cfg);
+  const StateMat P0 = priorCovariance(cfg, f.layout(), 0.01);
+  NavState nav;
+  nav.v = Vec3(0.1, -0.05, 0.02);
+  f.initialize(ImuSample{}, nav, VecX::Zero(6), P0);
+  std::vector<Eskf::Innovation> sink;
+  f.setInnovationSink(&sink);
+  EXPECT_NEAR(f.zeroVelocityNis(0.01), (0.01 + 0.0025 + 0.0004) / 2e-4, 1e-9);
+  EXPECT_TRUE(sink.empty());
+  EXPECT_EQ(f.logLikelihood(), 0.0);
+  EXPECT_EQ(f.covariance(), P0);
+  EXPECT_EQ(f.estimatedNav().v, nav.v);
+  // A wider sigma makes the same velocity less surprising: r = 9e-4, s = 1e-3 per component.
+  EXPECT_NEAR(f.zeroVelocityNis(0.03), 0.0129 / 1e-3, 1e-9);
+  EXPECT_NEAR(f.updateZeroVelocity(0.01), (0.01 + 0.0025 + 0.0004) / 2e-4, 1e-9);
+  EXPECT_EQ(sink.size(), 3u);
+}
+
 TEST(Eskf, ZeroVelocityAndPositionUpdatesMatchSequentialKalman) {
   // Correlated covariance (after prediction over a tilted, rotating second): the updates must equal the
   // textbook sequential scalar Kalman update x += K (z - h x), P = (I - K h^T) P, K = P h / (h^T P h + r).

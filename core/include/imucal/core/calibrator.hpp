@@ -10,6 +10,7 @@
 #include "imucal/core/eskf.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/filter_stepper.hpp"
+#include "imucal/core/free_moves.hpp"
 #include "imucal/core/increment_consistency.hpp"
 #include "imucal/core/innovation_whiteness.hpp"
 #include "imucal/core/noise_from_data.hpp"
@@ -65,6 +66,9 @@ struct CalibrationResult {
   std::size_t first_sample = 0;
   std::vector<EpochRecord> history;
   MeasurementStats stats;
+  // With free_moves and hold_turns: the recording's moves, each with its zero-velocity NIS and whether its
+  // centre was found at rest (held); empty otherwise.
+  std::vector<Move> moves;
   int passes_run = 0;
   double duration = 0.0;
   // Of the final pass: the innovations' log-likelihood and, when asked for, the innovations themselves.

@@ -33,6 +33,9 @@ class Eskf {
   // Pseudo-observation: the device turns about its measurement centre, so its velocity is zero.
   // Returns the sum of the three components' normalized innovation squared.
   double updateZeroVelocity(double sigma);
+  // The same sum as updateZeroVelocity would return now, the filter left as it is: does the data say the
+  // centre is at rest here (see free_moves.hpp)?
+  double zeroVelocityNis(double sigma) const;
   // Pseudo-observation: the position stays at p_ref.
   double updateConstantPosition(const Vec3& p_ref, double sigma);
 

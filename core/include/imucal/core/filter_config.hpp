@@ -68,6 +68,9 @@ struct MeasurementConfig {
   // instead of turned about a fixed centre: zero velocity holds only while it is still, and nothing holds
   // its position; the gyro alone carries the attitude from one still to the next.
   bool free_moves = false;
+  // With free_moves: a move whose zero-velocity innovations show that the centre stayed at rest (a turn in
+  // the hand about a point, between carries) holds zero velocity throughout (see free_moves.hpp).
+  bool hold_turns = true;
 };
 
 // What earlier calibrations of the same sensor found, carried into the next one as its prior (the daemon's

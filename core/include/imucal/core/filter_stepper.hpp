@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "imucal/core/eskf.hpp"
+#include "imucal/core/free_moves.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/types.hpp"
@@ -41,10 +42,14 @@ class FilterStepper {
   void addHeading(double t, double heading);
   // The next IMU sample (later than the last); true when it ended a filter step. end_step ends the step
   // here even if it is shorter than per_step (the stream's last sample).
-  // still: the sample is in a still stretch (with free_moves, zero velocity is applied only at steps whose
-  // last sample is still).
-  bool addImu(const ImuSample& sample, bool end_step = false, bool still = true);
+  // held: the centre is at rest at this sample, the device still or turned about it (with free_moves, zero
+  // velocity is applied only at steps whose last sample is held; see free_moves.hpp).
+  bool addImu(const ImuSample& sample, bool end_step = false, bool held = true);
   const MeasurementStats& stats() const { return stats_; }
+  // With free_moves: at every step that ends where the centre is not held, the zero-velocity NIS per
+  // component the filter would have had (not applied), for classifyMoves.
+  void probeFreeSteps(bool on) { probe_ = on; }
+  const std::vector<StepNis>& freeStepNis() const { return free_step_nis_; }
   std::size_t steps() const { return steps_; }
 
  private:
@@ -53,7 +58,7 @@ class FilterStepper {
   };
   void flush();
   void applyHeading(double value);
-  void endStep(bool still);
+  void endStep(bool held);
 
   Eskf& filter_;
   MeasurementConfig m_;
@@ -66,6 +71,8 @@ class FilterStepper {
   bool has_previous_ = false;
   double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0, position_nis_sum_ = 0.0;
   MeasurementStats stats_;
+  bool probe_ = false;
+  std::vector<StepNis> free_step_nis_;
 };
 
 }  // namespace imucal

@@ -16,6 +16,9 @@ struct TrajectoryPoint {
   Vec3 f_b = Vec3::Zero();  // true specific force, body
   Vec3 w_b = Vec3::Zero();  // true inertial angular rate, body
   bool still = true;        // at rest (with free_moves only these points hold zero velocity)
+  // The centre at rest: still, or turned about it rather than carried (with free_moves and hold_turns these
+  // hold zero velocity too: the bound takes the filter's classification of the moves as right).
+  bool held = true;
 };
 
 struct BoundResult {

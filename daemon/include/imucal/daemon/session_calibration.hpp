@@ -28,6 +28,7 @@ struct SessionOutcome {
 struct SessionInput {
   std::string sensor_id;
   std::vector<ImuSample> imu;
+  int moves = 0;                       // the detector's count (Session::moves); 0: not known
   std::vector<HeadingSample> heading;  // those outside the session's span are ignored; none: no heading
   FilterConfig filter;
   std::string state_dir;               // persisted there (unless empty) when the session converged
@@ -35,9 +36,11 @@ struct SessionInput {
   CarryOverConfig carry_over;
 };
 
-// Calibrated from the earlier calibration as its prior; if the session's innovations contradict the model
-// that way, from the session alone; if the zero-velocity ones still do (the hand carried the device
-// between poses instead of turning it about a centre), as free moves. Each fallback is named in `notes`.
+// Under a centre config, a session of several moves (or an unknown count) is first calibrated as free
+// moves, which finds the moves that held their centre: if the hand carried the device in any of them, that
+// is the session's model (zero velocity through the turns, at the stills between carries). Then from the
+// earlier calibration as its prior; if the session's innovations contradict the model that way, from the
+// session alone; if the zero-velocity ones still do, as free moves. Each fallback is named in `notes`.
 SessionOutcome calibrateSession(const SessionInput& in);
 
 }  // namespace imucal::daemon

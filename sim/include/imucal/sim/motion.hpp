@@ -54,6 +54,7 @@ struct TruthState {
   Vec3 a_n = Vec3::Zero();       // kinematic acceleration, m/s^2
   Vec3 f_b = Vec3::Zero();       // specific force at the IMU, body frame, m/s^2
   Vec3 omega_ib_b = Vec3::Zero();  // inertial rate the gyro senses (adds Earth rate when enabled)
+  bool carried = false;          // in a segment that carries the centre (translation_m): a free move
 };
 
 class Motion {
