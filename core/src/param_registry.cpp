@@ -39,7 +39,7 @@ std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
        "gravity magnitude minus the one assumed"},
       // A hand turns a board about a point a few centimetres from the IMU.
       {ParamBlock::LeverArm, "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05, 0.5, BlockMode::Off, BlockMode::Off,
-       "IMU position relative to the centre of the turn, body axes"},
+       "IMU position relative to the centre of the turn, body axes", true},
   }};
 }
 

@@ -58,7 +58,7 @@ bool CalibrationService::restore(const std::string& id) {
   if (!stored) return false;
   r.calibration = std::move(stored);
   r.restored = true;
-  r.state = CalibrationState::Converged;
+  r.state = stateOf(*r.calibration);
   return true;
 }
 
@@ -183,7 +183,7 @@ bool CalibrationService::onImu(const std::string& id, const ImuSample& s, std::i
   }
   if (!turning && was_turning && report.state == CalibrationState::Calibrating) {
     // The motion was not a calibration turn: back to what we had.
-    report.state = report.calibration ? CalibrationState::Converged : CalibrationState::Waiting;
+    report.state = report.calibration ? stateOf(*report.calibration) : CalibrationState::Waiting;
     return true;
   }
   return false;
@@ -249,8 +249,10 @@ void CalibrationService::apply(const SessionOutcome& outcome) {
   }
   report.calibration = outcome.calibration;
   report.restored = false;
-  report.state = CalibrationState::Converged;
-  report.failure = outcome.persist_error.empty() ? "" : "not persisted: " + outcome.persist_error;
+  report.state = stateOf(*outcome.calibration);
+  report.failure = outcome.calibration->incomplete;
+  if (!outcome.persist_error.empty())
+    report.failure += (report.failure.empty() ? "" : "; ") + std::string("not persisted: ") + outcome.persist_error;
 }
 
 }  // namespace imucal::daemon

@@ -87,6 +87,7 @@ StoredCalibration parsePayload(const std::string& path, const std::string& body)
                                                           : std::vector<double>(c.names.size(), -1.0);
   // Absent in files written before carry-over: such a calibration is published but not carried on.
   if (p.contains("covariance")) c.covariance = p["covariance"].get<std::vector<double>>();
+  if (p.contains("incomplete")) c.incomplete = p["incomplete"].get<std::string>();
   c.information_utime_s = p.contains("information_utime_s") ? p["information_utime_s"].get<std::vector<double>>()
                                                             : std::vector<double>(c.names.size(), c.utime_s);
   if (!c.covariance.empty() && c.covariance.size() != c.names.size() * c.names.size())
@@ -137,7 +138,8 @@ void CalibrationStore::save(const StoredCalibration& c) const {
   nlohmann::json payload{{"sensor_id", c.sensor_id}, {"utime_s", c.utime_s}, {"names", c.names},
                          {"values", c.values},       {"sigmas", c.sigmas},   {"converged", c.converged},
                          {"convergence_time_s", c.convergence_time_s}, {"model", c.model},
-                         {"covariance", c.covariance}, {"information_utime_s", c.information_utime_s}};
+                         {"covariance", c.covariance}, {"information_utime_s", c.information_utime_s},
+                         {"incomplete", c.incomplete}};
   const std::string body = payload.dump();
   const nlohmann::json file{{"schema_version", kSchemaVersion}, {"checksum", checksumOf(body)}, {"payload", body}};
   const std::string text = file.dump(2) + "\n";

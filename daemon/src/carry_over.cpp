@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "imucal/core/initial_alignment.hpp"
+#include "imucal/core/param_registry.hpp"
 
 namespace imucal::daemon {
 
@@ -31,7 +32,7 @@ CarriedPrior carriedPrior(const StoredCalibration& earlier, const FilterConfig& 
   std::vector<double> aged;       // its aged variance
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j < names.size(); ++j) {
-      if (names[j] != earlier.names[i]) continue;
+      if (names[j] != earlier.names[i] || blockInfo(layout.params()[j].block).session_only) continue;
       const double prior_var = prior_sigma(static_cast<Eigen::Index>(j)) * prior_sigma(static_cast<Eigen::Index>(j));
       const double forget = isBias(layout.params()[j].block) ? config.bias_forget : config.other_forget;
       const double age = std::max(0.0, now - informationTime(earlier, i));

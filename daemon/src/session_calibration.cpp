@@ -150,20 +150,20 @@ SessionOutcome calibrateSession(const SessionInput& in) {
     out.failure = "refused: the model does not describe this session: " + problems.front();
     return out;
   }
-  // Every bias must converge but what a turn about the vertical cannot settle by itself: the vertical gyro
-  // bias (it needs heading) and the accelerometer bias along an unknown gravity. Each parameter's own flag
-  // goes out with the calibration.
+  StoredCalibration c;
+  // Complete when every bias converged but what a turn about the vertical cannot settle by itself: the
+  // vertical gyro bias (it needs heading) and the accelerometer bias along an unknown gravity. Otherwise
+  // the calibration is partial: still the best the daemon knows (honest sigmas, each parameter's own flag),
+  // kept and carried into the next session, which may settle the rest.
   const auto& refs = result.layout.params();
-  for (std::size_t j = 0; j < refs.size(); ++j) {
+  for (std::size_t j = 0; j < refs.size() && c.incomplete.empty(); ++j) {
     const bool bias = refs[j].block == ParamBlock::AccelBias || refs[j].block == ParamBlock::GyroBias;
     if (!bias || result.converged[j]) continue;
     if (refs[j].block == ParamBlock::GyroBias && refs[j].component == 2) continue;
     if (result.not_converged_reason[j] == kLimitedByGravity) continue;
     if (result.not_converged_reason[j].rfind(kConfoundedPrefix, 0) == 0) continue;  // reported as a combination
-    out.failure = "session did not converge (" + result.names[j] + ": " + result.not_converged_reason[j] + ")";
-    return out;
+    c.incomplete = "session did not converge (" + result.names[j] + ": " + result.not_converged_reason[j] + ")";
   }
-  StoredCalibration c;
   c.sensor_id = in.sensor_id;
   c.utime_s = t1;
   c.names = result.names;

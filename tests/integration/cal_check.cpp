@@ -30,11 +30,11 @@ struct Waiter {
   std::int64_t first_recv = -1;
   void on(const lcm::ReceiveBuffer* rbuf, const std::string&, const imucal::calibration_t* m) {
     if (m->sensor_id == sensor_id && m->state != last_state) {
-      // The daemon's progress as it happens: waiting -> calibrating -> converged (or failed).
-      static const char* names[] = {"waiting", "calibrating", "converged", "failed"};
+      // The daemon's progress as it happens: waiting -> calibrating -> converged (or failed, or partial).
+      static const char* names[] = {"waiting", "calibrating", "converged", "failed", "partial"};
       if (first_recv < 0) first_recv = rbuf->recv_utime;
       std::cout << "  +" << std::fixed << std::setprecision(1) << static_cast<double>(rbuf->recv_utime - first_recv) * 1e-6
-                << " s  " << sensor_id << ": " << (m->state >= 0 && m->state <= 3 ? names[m->state] : "?")
+                << " s  " << sensor_id << ": " << (m->state >= 0 && m->state <= 4 ? names[m->state] : "?")
                 << (m->restored ? " (restored)" : "") << '\n';
       last_state = m->state;
     }

@@ -75,6 +75,34 @@ TEST_F(DaemonService, CalibratesAStreamedSessionAndPersistsIt) {
   EXPECT_EQ(rr.calibration->values, c.values);
 }
 
+// A calibration kept although not every bias converged (a single hand turn with the full model) comes back
+// after a restart as what it was: partial, with why, not as converged.
+TEST_F(DaemonService, APartialCalibrationIsRestoredAsPartial) {
+  StoredCalibration c;
+  c.sensor_id = "imu0";
+  c.utime_s = 100.0;
+  c.names = {"accel_bias_x", "gyro_bias_x"};
+  c.values = {0.3, 0.01};
+  c.sigmas = {0.1, 1e-4};
+  c.converged = {false, true};
+  c.convergence_time_s = {-1.0, 4.0};
+  c.model = "15-state";
+  c.covariance = {0.01, 0.0, 0.0, 1e-8};
+  c.information_utime_s = {100.0, 100.0};
+  c.incomplete = "session did not converge (accel_bias_x: sigma above 0.2 of the prior)";
+  CalibrationStore(config().state_dir).save(c);
+  CalibrationService restarted(config());
+  ASSERT_TRUE(restarted.restore("imu0"));
+  const SensorReport& r = restarted.reports().at("imu0");
+  EXPECT_EQ(r.state, CalibrationState::Partial);
+  EXPECT_EQ(r.calibration->incomplete, c.incomplete);
+  c.incomplete.clear();
+  CalibrationStore(config().state_dir).save(c);
+  CalibrationService again(config());
+  ASSERT_TRUE(again.restore("imu0"));
+  EXPECT_EQ(again.reports().at("imu0").state, CalibrationState::Converged);
+}
+
 TEST_F(DaemonService, TwoSensorsOnOneChannelStaySeparate) {
   sim::SimConfig a = sim::paperScenario(5.0 * units::deg, true, 31);
   a.motion.segments.back().duration = 12.0;

@@ -22,7 +22,8 @@ class DaemonStore : public ::testing::Test {
  protected:
   StoredCalibration sample() const {
     return {"imu0",      1.7e9,       {"accel_bias_x", "gyro_bias_z"}, {0.44, -1.2e-3}, {1e-3, 2e-4}, {true, false},
-            {4.5, -1.0}, "15-state", {1e-6, 3e-8, 3e-8, 4e-8},         {1.7e9 - 3600.0, 1.7e9}};
+            {4.5, -1.0}, "15-state", {1e-6, 3e-8, 3e-8, 4e-8},         {1.7e9 - 3600.0, 1.7e9},
+            "session did not converge (accel_bias_x: sigma above 0.2 of the prior)"};
   }
   std::string read(const std::string& path) const {
     std::ifstream in(path);
@@ -48,6 +49,7 @@ TEST_F(DaemonStore, RoundTripLeavesNoTemporaryFile) {
   EXPECT_DOUBLE_EQ(loaded->utime_s, 1.7e9);
   EXPECT_EQ(loaded->covariance, sample().covariance);
   EXPECT_EQ(loaded->information_utime_s, sample().information_utime_s);
+  EXPECT_EQ(loaded->incomplete, sample().incomplete);
   int files = 0;
   for (const auto& e : fs::directory_iterator(dir_)) files += e.path().extension() == ".tmp" ? 100 : 1;
   EXPECT_EQ(files, 1);

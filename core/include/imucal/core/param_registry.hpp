@@ -55,6 +55,9 @@ struct ParamBlockInfo {
   // the motion cannot reveal staying at its prior and reported so.
   BlockMode config_mode = BlockMode::Off;
   std::string description;
+  // Belongs to one session, not to the sensor or the place (how the hand held the device): never carried
+  // from one calibration into the next (the daemon's carry-over).
+  bool session_only = false;
 
   int size() const { return static_cast<int>(components.size()); }
   std::string paramName(int component) const;

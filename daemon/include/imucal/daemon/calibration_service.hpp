@@ -20,7 +20,14 @@
 
 namespace imucal::daemon {
 
-enum class CalibrationState { Waiting = 0, Calibrating = 1, Converged = 2, Failed = 3 };
+// Partial: the last calibration is kept and carried on, but not every bias converged (StoredCalibration::
+// incomplete says which first); more motion settles it.
+enum class CalibrationState { Waiting = 0, Calibrating = 1, Converged = 2, Failed = 3, Partial = 4 };
+
+// Converged or Partial, as the calibration says.
+inline CalibrationState stateOf(const StoredCalibration& c) {
+  return c.incomplete.empty() ? CalibrationState::Converged : CalibrationState::Partial;
+}
 
 struct ServiceConfig {
   FilterConfig filter;

@@ -24,6 +24,9 @@ struct StoredCalibration {
   // When the data behind each parameter were taken (the sample clock of utime_s): an earlier session's
   // time where this one did not narrow what was carried. Absent in older files: utime_s for every one.
   std::vector<double> information_utime_s;
+  // Why not every bias the session could settle converged ("" when they did): such a calibration is kept
+  // and carried into the next session, and published as partial (each parameter's flag says which hold).
+  std::string incomplete;
 };
 
 class CalibrationStore {

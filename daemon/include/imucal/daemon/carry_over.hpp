@@ -23,7 +23,7 @@ struct CarryOverConfig {
 
 // The prior for a session starting at `now` (the sample clock of the stored calibration's utime_s): the
 // earlier estimates and covariance, aged, of the parameters `filter` has (gravity's error state included
-// where the filter adds it). Empty when nothing can be carried: carry-over off, no covariance stored (a
+// where the filter adds it), but a block of one session only (the lever arm: how the hand held it). Empty when nothing can be carried: carry-over off, no covariance stored (a
 // file from before it was kept), a clock that went back (another time base), or everything forgotten.
 CarriedPrior carriedPrior(const StoredCalibration& earlier, const FilterConfig& filter, double now,
                           const CarryOverConfig& config);

@@ -13,9 +13,10 @@ namespace imucal::daemon {
 
 struct SessionOutcome {
   std::string sensor_id;
-  std::optional<StoredCalibration> calibration;  // set when the session converged
-  std::string failure;        // why not (empty when it converged)
-  std::string persist_error;  // converged, but the file could not be written
+  // Set when the session calibrated with a model its data agree with (partial: see its `incomplete`).
+  std::optional<StoredCalibration> calibration;
+  std::string failure;        // why not
+  std::string persist_error;  // calibrated, but the file could not be written
   MeasurementStats stats;
   // What to do next to reveal what this session left unknown (see motion_planner.hpp); empty when the
   // session gave no result to plan from.
@@ -31,7 +32,7 @@ struct SessionInput {
   int moves = 0;                       // the detector's count (Session::moves); 0: not known
   std::vector<HeadingSample> heading;  // those outside the session's span are ignored; none: no heading
   FilterConfig filter;
-  std::string state_dir;               // persisted there (unless empty) when the session converged
+  std::string state_dir;               // persisted there (unless empty) when the session calibrated
   std::optional<StoredCalibration> earlier;  // the sensor's last calibration, carried on (carry_over.hpp)
   CarryOverConfig carry_over;
 };
