@@ -52,14 +52,19 @@ double Icm42688Emulation::sampleTime() const {
   return odr > 0.0 ? static_cast<double>(last_tick_) / odr : 0.0;
 }
 
-std::optional<long> Icm42688Emulation::currentTick() const {
+double Icm42688Emulation::tickRateHz() const {
   const auto& b0 = banks_[0];
   const std::uint8_t pwr = b0[reg::PWR_MGMT0];
   const bool gyro_on = (pwr & GYRO_MODE_MASK) != 0, accel_on = (pwr & ACCEL_MODE_MASK) != 0;
+  if (!(gyro_on || accel_on)) return 0.0;
   // The accelerometer's ODR paces data ready when the gyro is off; both use the gyro's here (the driver
   // sets the same rate on both).
-  const double odr = odrHz(b0[gyro_on ? reg::GYRO_CONFIG0 : reg::ACCEL_CONFIG0]);
-  if (!(gyro_on || accel_on) || odr <= 0.0) return std::nullopt;
+  return odrHz(b0[gyro_on ? reg::GYRO_CONFIG0 : reg::ACCEL_CONFIG0]);
+}
+
+std::optional<long> Icm42688Emulation::currentTick() const {
+  const double odr = tickRateHz();
+  if (odr <= 0.0) return std::nullopt;
   return static_cast<long>(std::floor(time_s_() * odr + 1e-9));
 }
 
@@ -67,7 +72,7 @@ Icm42688Counts Icm42688Emulation::countsAt(long tick) const {
   const auto& b0 = banks_[0];
   const std::uint8_t pwr = b0[reg::PWR_MGMT0];
   const bool gyro_on = (pwr & GYRO_MODE_MASK) != 0, accel_on = (pwr & ACCEL_MODE_MASK) != 0;
-  const double odr = odrHz(b0[gyro_on ? reg::GYRO_CONFIG0 : reg::ACCEL_CONFIG0]);
+  const double odr = tickRateHz();
   const SensedMotion m = source_.at(static_cast<double>(tick) / odr);
   const Vec3 f = toSensorAxes(mounting_, m.specific_force), w = toSensorAxes(mounting_, m.rate);
   const double accel_fs = accelFullScaleG(b0[reg::ACCEL_CONFIG0]) * units::kStandardGravity;
@@ -131,7 +136,7 @@ void Icm42688Emulation::updateFifo() {
     b0[reg::INT_STATUS] |= FIFO_FULL_INT;
     first = tick - kKeep + 1;
   }
-  const double odr = odrHz(b0[(b0[reg::PWR_MGMT0] & GYRO_MODE_MASK) ? reg::GYRO_CONFIG0 : reg::ACCEL_CONFIG0]);
+  const double odr = tickRateHz();
   for (long k = first; k <= tick; ++k) {
     const long before = count();
     const auto odr_time = static_cast<std::int64_t>(std::llround(static_cast<double>(k) * 1e6 / odr));

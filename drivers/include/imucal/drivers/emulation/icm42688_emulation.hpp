@@ -41,6 +41,7 @@ class Icm42688Emulation final : public EmulatedI2cDevice {
 
  private:
   void resetRegisters();
+  double tickRateHz() const;  // 0 while both sensors are off
   // The ODR tick now (negative before the motion starts); nullopt while both sensors are off.
   std::optional<long> currentTick() const;
   void updateData();
