@@ -18,7 +18,12 @@ EmulatedI2cDevice& EmulatedI2cBus::device(std::uint8_t address, std::uint8_t reg
 }
 
 void EmulatedI2cBus::readRegisters(std::uint8_t address, std::uint8_t reg, std::uint8_t* buffer, std::size_t n) {
-  device(address, reg).read(reg, buffer, n);
+  EmulatedI2cDevice& d = device(address, reg);
+  if (n > max_read_)
+    throw I2cError(deviceName(*this, address) + ": read of " + std::to_string(n) + " bytes at " + hexByte(reg) +
+                       " exceeds the adapter's " + std::to_string(max_read_) + ": " + std::strerror(EINVAL),
+                   EINVAL);
+  d.read(reg, buffer, n);
 }
 
 void EmulatedI2cBus::writeRegister(std::uint8_t address, std::uint8_t reg, std::uint8_t value) {

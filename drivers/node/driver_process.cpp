@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <stdexcept>
 
 #include "imucal/drivers/device_error.hpp"
 #include "imucal/io/errors.hpp"
@@ -35,14 +36,34 @@ void setupLogging(const std::string& program, const std::string& level) {
   spdlog::set_level(spdlog::level::from_str(level));
 }
 
+namespace {
+StampedImu toStamped(const ImuReading& r, std::int64_t seq) {
+  return StampedImu{r.utime, seq, r.device_time_us, r.accel, r.gyro, r.temperature_c, r.status};
+}
+}  // namespace
+
 imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const std::string& sensor_id) {
-  return toImuMessage(StampedImu{r.utime, seq, r.device_time_us, r.accel, r.gyro, r.temperature_c, r.status}, sensor_id);
+  return toImuMessage(toStamped(r, seq), sensor_id);
+}
+
+imucal::imu_batch_t toImuBatchMessage(const std::vector<ImuReading>& readings, std::int64_t first_seq, const std::string& sensor_id) {
+  std::vector<StampedImu> samples;
+  samples.reserve(readings.size());
+  for (const ImuReading& r : readings) samples.push_back(toStamped(r, first_seq + static_cast<std::int64_t>(samples.size())));
+  return toImuBatch(samples, sensor_id);
 }
 
 void printSample(const imucal::imu_sample_t& m) {
   std::printf("imu,%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%s\n", static_cast<long long>(m.utime), static_cast<long long>(m.seq),
               m.accel[0], m.accel[1], m.accel[2], m.gyro[0], m.gyro[1], m.gyro[2], m.temperature_c, m.status, m.sensor_id.c_str());
   std::fflush(stdout);
+}
+
+void printSample(const imucal::imu_batch_t& m) {
+  ImuMessage expanded;
+  const std::string why = fromImuBatch(m, expanded);
+  if (!why.empty()) throw std::logic_error("printSample: the driver built a bad imu_batch_t: " + why);
+  for (const StampedImu& s : expanded.samples) printSample(toImuMessage(s, expanded.sensor_id));
 }
 
 void printSample(const imucal::heading_sample_t& m) {

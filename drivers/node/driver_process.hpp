@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "imucal/drivers/counters.hpp"
 #include "imucal/drivers/event_loop.hpp"
@@ -27,12 +28,17 @@ void addDriverOptions(CLI::App& app, DriverOptions& options);
 void setupLogging(const std::string& program, const std::string& level);
 
 imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const std::string& sensor_id);
+// One FIFO read (1 .. imu_batch_t::MAX_COUNT readings, times increasing) as one imu_batch_t: per-sample
+// stamps, sequence numbers first_seq, first_seq + 1, ...
+imucal::imu_batch_t toImuBatchMessage(const std::vector<ImuReading>& readings, std::int64_t first_seq, const std::string& sensor_id);
 
 // One CSV line per published message on stdout, for checks without an LCM subscriber (e.g. inside a VM):
 //   imu,utime,seq,ax,ay,az,gx,gy,gz,temperature_c,status,sensor_id     (SI, FRD)
 //   heading,utime,heading_rad,sigma_rad
 void printSample(const imucal::imu_sample_t& m);
 void printSample(const imucal::heading_sample_t& m);
+// A batch as the imu lines of its samples (what a subscriber gets after expanding it).
+void printSample(const imucal::imu_batch_t& m);
 
 // Logs the counters every `period_s` and once more when destroyed (at exit, however the loop ended).
 class CounterLog {

@@ -21,6 +21,7 @@ struct I2cDeviceSetup {
   double odr_hz = 0.0;
   double poll_hz = 0.0;
   std::string consumer;  // GPIO consumer label
+  int ticks_per_edge = 1;  // ODR ticks per data-ready edge: the FIFO watermark, 1 without the FIFO (emulated pin)
 };
 
 class I2cDevice {

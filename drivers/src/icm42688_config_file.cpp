@@ -7,6 +7,19 @@ namespace imucal::drivers {
 
 namespace {
 
+// `fifo: {enabled: false, watermark_samples: 10}`
+Icm42688FifoConfig fifoField(io::YamlSection& s) {
+  Icm42688FifoConfig c;
+  io::YamlSection f = s.section("fifo");
+  c.enabled = f.boolean("enabled", c.enabled);
+  const io::Range records{[](double v) { return v >= 1 && v <= icm42688::kFifoMaxRecords; },
+                          "must be between 1 and " + std::to_string(icm42688::kFifoMaxRecords) +
+                              " records (the 2048-byte FIFO holds that many 16-byte records)"};
+  c.watermark_samples = f.integer("watermark_samples", c.watermark_samples, records);
+  f.finish();
+  return c;
+}
+
 Icm42688FileConfig fromYaml(const YAML::Node& root, const std::string& file) {
   io::YamlSection s(root, file, "");
   Icm42688FileConfig c;
@@ -28,8 +41,11 @@ Icm42688FileConfig fromYaml(const YAML::Node& root, const std::string& file) {
   // Chip face up, x forward: FRD = (x, -y, -z).
   c.chip.axis_map = axisMapField(s, "axis_map", io::parseAxisMap({"+x", "-y", "-z"}));
   c.chip.retry = retryField(s);
+  c.chip.fifo = fifoField(s);
   c.data_ready = dataReadyField(s);
-  c.poll_hz = s.number("poll_hz", 2.0 * c.chip.odr_hz, io::Range::positive());
+  // Polled, twice per watermark (per sample without the FIFO).
+  const int per_read = c.chip.fifo.enabled ? c.chip.fifo.watermark_samples : 1;
+  c.poll_hz = s.number("poll_hz", 2.0 * c.chip.odr_hz / per_read, io::Range::positive());
   c.process = processFields(s, "icm42688@" + c.bus + ":" + hexByte(c.chip.address), "IMUCAL_IMU");
   s.finish();
   return c;

@@ -1,6 +1,7 @@
 #include "imucal/drivers/icm42688_driver.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "imucal/core/units.hpp"
 #include "imucal/drivers/device_error.hpp"
@@ -13,20 +14,38 @@ namespace {
 
 using namespace icm42688;
 
+constexpr std::uint8_t kFifoRecordContents = FIFO_ACCEL_EN | FIFO_GYRO_EN | FIFO_TEMP_EN | FIFO_TMST_FSYNC_EN;
+
+// Stream-to-FIFO with packet 3 records, the count in big-endian records, the watermark interrupt repeated
+// at every ODR tick while reached. The watermark is written before INT_SOURCE0 routes it to INT1, so the
+// interrupt never runs on the reset value 0.
+void addFifoSettings(RegisterTable& t, int watermark) {
+  const auto wm_low = static_cast<std::uint8_t>(watermark & 0xFF);
+  const auto wm_high = static_cast<std::uint8_t>((watermark >> 8) & FIFO_WM_HIGH_MASK);
+  t.push_back({0, reg::INTF_CONFIG0, FIFO_COUNT_REC | FIFO_COUNT_ENDIAN | SENSOR_DATA_ENDIAN, 0});
+  t.push_back({0, reg::FIFO_CONFIG1, kFifoRecordContents | FIFO_WM_GT_TH, FIFO_HIRES_EN});
+  t.push_back({0, reg::FIFO_CONFIG2, wm_low, static_cast<std::uint8_t>(~wm_low)});
+  t.push_back({0, reg::FIFO_CONFIG3, wm_high, static_cast<std::uint8_t>(FIFO_WM_HIGH_MASK & ~wm_high)});
+  t.push_back({0, reg::FIFO_CONFIG, FIFO_MODE_STREAM, static_cast<std::uint8_t>(FIFO_MODE_MASK & ~FIFO_MODE_STREAM)});
+}
+
 RegisterTable makeTable(const Icm42688Config& c) {
   const auto gyro = static_cast<std::uint8_t>(gyroRange(c.gyro_range_dps).code << FS_SEL_SHIFT | odrCode(c.odr_hz));
   const auto accel = static_cast<std::uint8_t>(accelRange(c.accel_range_g).code << FS_SEL_SHIFT | odrCode(c.odr_hz));
-  return {
+  RegisterTable t{
       {0, reg::GYRO_CONFIG0, gyro, static_cast<std::uint8_t>(~gyro)},
       {0, reg::ACCEL_CONFIG0, accel, static_cast<std::uint8_t>(~accel)},
-      // INT1: pulsed, push-pull, active high, driven by data ready only.
+      // INT1: pulsed, push-pull, active high, driven by one source only (data ready, or the FIFO watermark).
       {0, reg::INT_CONFIG, INT1_DRIVE_PUSH_PULL | INT1_POLARITY_HIGH, INT1_MODE_LATCHED},
       c.odr_hz >= 4000.0 ? RegisterSetting{0, reg::INT_CONFIG1, INT_TPULSE_DURATION_8US | INT_TDEASSERT_DISABLE, INT_ASYNC_RESET}
                          : RegisterSetting{0, reg::INT_CONFIG1, 0, INT_TPULSE_DURATION_8US | INT_TDEASSERT_DISABLE | INT_ASYNC_RESET},
-      {0, reg::INT_SOURCE0, UI_DRDY_INT1_EN, static_cast<std::uint8_t>(~UI_DRDY_INT1_EN)},
-      // Last: both sensors on in low-noise mode, temperature on.
-      {0, reg::PWR_MGMT0, GYRO_MODE_LOW_NOISE | ACCEL_MODE_LOW_NOISE, TEMP_DIS | IDLE},
   };
+  if (c.fifo.enabled) addFifoSettings(t, c.fifo.watermark_samples);
+  const std::uint8_t int1 = c.fifo.enabled ? FIFO_THS_INT1_EN : UI_DRDY_INT1_EN;
+  t.push_back({0, reg::INT_SOURCE0, int1, static_cast<std::uint8_t>(~int1)});
+  // Last: both sensors on in low-noise mode, temperature on.
+  t.push_back({0, reg::PWR_MGMT0, GYRO_MODE_LOW_NOISE | ACCEL_MODE_LOW_NOISE, TEMP_DIS | IDLE});
+  return t;
 }
 
 std::int16_t bigEndian(const std::uint8_t* p) { return static_cast<std::int16_t>(static_cast<std::uint16_t>(p[0] << 8 | p[1])); }
@@ -40,7 +59,8 @@ Icm42688Driver::Icm42688Driver(I2cBus& bus, const Icm42688Config& config, Clock&
       counters_({"samples", "bus_errors", "bus_retries", "transfer_failures", "resets", "who_am_i_mismatch",
                  "reset_not_cleared", "configure_failed", "config_mismatch", "config_reapply_failed",
                  "data_not_ready", "empty_polls", "invalid_data", "accel_saturated", "gyro_saturated",
-                 "timestamp_backwards", "stale_edge", "missed_samples"}),
+                 "timestamp_backwards", "stale_edge", "missed_samples", "fifo_reads", "fifo_overflow", "fifo_bad_count",
+                 "fifo_bad_header", "fifo_empty_read", "fifo_invalid_data", "fifo_flushes", "fifo_period_stamps"}),
       device_(bus, config.address, config.retry, clock, counters_, reg::REG_BANK_SEL),
       stamper_(config.odr_hz, counters_),
       table_(makeTable(config)) {
@@ -85,6 +105,8 @@ void Icm42688Driver::runStateMachine() {
           if (s.reg == reg::PWR_MGMT0) device_.clock().sleepUs(kPowerUpWaitUs);
         });
         device_.clock().sleepUs(kGyroStartupUs);
+        // The FIFO filled during the start-up wait (360 records at 8 kHz: more than it holds).
+        if (config_.fifo.enabled) flushFifo();
         stamper_.restart();
         state_ = State::Read;
         break;
@@ -106,7 +128,35 @@ void Icm42688Driver::start() {
   });
 }
 
+ImuReading Icm42688Driver::toReading(const std::int16_t accel_counts[3], const std::int16_t gyro_counts[3]) {
+  ImuReading r;
+  Vec3 accel, gyro;
+  for (int i = 0; i < 3; ++i) {
+    accel[i] = accel_counts[i] * accel_lsb_;
+    gyro[i] = gyro_counts[i] * gyro_lsb_;
+    if (saturated(accel_counts[i])) r.status |= status::kAccelSaturated;
+    if (saturated(gyro_counts[i])) r.status |= status::kGyroSaturated;
+  }
+  if (r.status & status::kAccelSaturated) counters_.increment("accel_saturated");
+  if (r.status & status::kGyroSaturated) counters_.increment("gyro_saturated");
+  r.accel = config_.axis_map.apply(accel);
+  r.gyro = config_.axis_map.apply(gyro);
+  return r;
+}
+
+void Icm42688Driver::flushFifo() {
+  device_.selectBank(0);
+  device_.writeReg(reg::SIGNAL_PATH_RESET, FIFO_FLUSH);
+  // INT_STATUS still holds the FIFO_FULL / FIFO_THS of what was flushed (the start-up wait fills the FIFO
+  // at 8 kHz): reading clears them, so the next read does not take them for a new overflow.
+  device_.readReg(reg::INT_STATUS);
+  counters_.increment("fifo_flushes");
+  last_odr_time_.reset();
+  stamper_.restart();  // the records after a flush do not continue the ones before
+}
+
 std::optional<ImuReading> Icm42688Driver::read(std::optional<std::int64_t> edge_utime) {
+  if (config_.fifo.enabled) throw std::logic_error("Icm42688Driver::read: the FIFO is enabled, use readFifo()");
   try {
     if (state_ != State::Read) start();
     std::uint8_t b[kBurstLength];
@@ -126,18 +176,7 @@ std::optional<ImuReading> Icm42688Driver::read(std::optional<std::int64_t> edge_
       counters_.increment("invalid_data");
       return std::nullopt;
     }
-    ImuReading r;
-    Vec3 accel, gyro;
-    for (int i = 0; i < 3; ++i) {
-      accel[i] = raw[1 + i] * accel_lsb_;
-      gyro[i] = raw[4 + i] * gyro_lsb_;
-      if (saturated(raw[1 + i])) r.status |= status::kAccelSaturated;
-      if (saturated(raw[4 + i])) r.status |= status::kGyroSaturated;
-    }
-    if (r.status & status::kAccelSaturated) counters_.increment("accel_saturated");
-    if (r.status & status::kGyroSaturated) counters_.increment("gyro_saturated");
-    r.accel = config_.axis_map.apply(accel);
-    r.gyro = config_.axis_map.apply(gyro);
+    ImuReading r = toReading(raw + 1, raw + 4);
     r.temperature_c = raw[0] / kTempLsbPerDegC + kTempOffsetDegC;
     r.utime = stamper_.stamp(edge_utime, read_utime);
     counters_.increment("samples");
@@ -155,6 +194,7 @@ int Icm42688Driver::verifyConfiguration() {
     bool repaired = true;
     const int mismatches = device_.verifyTable(table_, &repaired);
     if (!repaired) state_ = State::Reset;
+    else if (mismatches > 0 && config_.fifo.enabled) flushFifo();
     return mismatches;
   } catch (const I2cError&) {
     counters_.increment("transfer_failures");

@@ -14,7 +14,10 @@ namespace imucal::drivers {
 
 namespace {
 constexpr std::size_t kSmbusBlockMax = I2C_SMBUS_BLOCK_MAX;  // 32 bytes per SMBus block transfer
-}
+constexpr std::size_t kI2cRdwrMax = 8192;                      // i2c-dev's limit per I2C_RDWR message
+}  // namespace
+
+std::size_t LinuxI2cBus::maxReadLength() const { return plain_i2c_ ? kI2cRdwrMax : kSmbusBlockMax; }
 
 LinuxI2cBus::LinuxI2cBus(std::string path) : path_(std::move(path)) {
   fd_ = ::open(path_.c_str(), O_RDWR | O_CLOEXEC);

@@ -1,5 +1,7 @@
 #include "imucal/drivers/register_device.hpp"
 
+#include <algorithm>
+
 #include "imucal/drivers/device_error.hpp"
 
 namespace imucal::drivers {
@@ -18,6 +20,12 @@ void RegisterDevice::writeReg(std::uint8_t reg, std::uint8_t value) {
 
 void RegisterDevice::readBurst(std::uint8_t reg, std::uint8_t* buffer, std::size_t n) {
   withRetry(retry_, clock_, counters_, [&] { bus_.readRegisters(address_, reg, buffer, n); });
+}
+
+void RegisterDevice::readStream(std::uint8_t reg, std::uint8_t* buffer, std::size_t n, std::size_t unit) {
+  const std::size_t max = bus_.maxReadLength();
+  const std::size_t chunk = max >= unit ? max / unit * unit : max;
+  for (std::size_t done = 0; done < n; done += chunk) readBurst(reg, buffer + done, std::min(chunk, n - done));
 }
 
 void RegisterDevice::selectBank(std::uint8_t bank) {

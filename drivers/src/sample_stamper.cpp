@@ -8,13 +8,21 @@ SampleStamper::SampleStamper(double rate_hz, Counters& counters)
     : period_us_(static_cast<std::int64_t>(std::llround(1e6 / rate_hz))), counters_(counters) {}
 
 std::int64_t SampleStamper::stamp(std::optional<std::int64_t> edge_utime, std::int64_t read_utime) {
-  const std::int64_t tolerance = period_us_ + period_us_ / 2;
-  std::int64_t t = read_utime;
-  if (edge_utime) {
-    // Read more than 1.5 periods after its edge, the registers may already hold the next sample.
-    if (read_utime - *edge_utime > tolerance) counters_.increment("stale_edge");
-    else t = *edge_utime;
+  // Read more than 1.5 periods after its edge, the registers may already hold the next sample.
+  return check(pick(edge_utime, read_utime, period_us_ + period_us_ / 2));
+}
+
+std::int64_t SampleStamper::pick(std::optional<std::int64_t> edge_utime, std::int64_t read_utime, std::int64_t tolerance_us) {
+  if (!edge_utime) return read_utime;
+  if (read_utime - *edge_utime > tolerance_us) {
+    counters_.increment("stale_edge");
+    return read_utime;
   }
+  return *edge_utime;
+}
+
+std::int64_t SampleStamper::check(std::int64_t t) {
+  const std::int64_t tolerance = period_us_ + period_us_ / 2;
   if (last_) {
     if (t <= *last_) {
       counters_.increment("timestamp_backwards");

@@ -10,6 +10,7 @@
 #include "imucal/drivers/emulation/icm42688_emulation.hpp"
 #include "imucal/drivers/icm42688_driver.hpp"
 #include "imucal/drivers/icm42688_registers.hpp"
+#include "icm42688_rig.hpp"
 
 namespace imucal::drivers {
 namespace {
@@ -18,34 +19,7 @@ using emulation::EmulatedI2cBus;
 using emulation::Icm42688Emulation;
 namespace reg = icm42688::reg;
 
-struct Rig {
-  explicit Rig(Icm42688Config c = config()) : cfg(c), t0(clock.nowUtime()), chip(source, [this] { return seconds(); }, c.axis_map) {
-    bus.attach(cfg.address, chip);
-  }
-  static Icm42688Config config() {
-    Icm42688Config c;
-    c.accel_range_g = 4.0;
-    c.gyro_range_dps = 250.0;
-    c.odr_hz = 100.0;
-    c.axis_map = io::parseAxisMap({"+x", "-y", "-z"});
-    return c;
-  }
-  double seconds() { return static_cast<double>(clock.nowUtime() - t0) * 1e-6; }
-  // Moves the clock just past the next ODR tick and returns that tick's time stamp.
-  std::int64_t nextTick() {
-    const auto period = static_cast<std::int64_t>(std::llround(1e6 / cfg.odr_hz));
-    const std::int64_t k = (clock.nowUtime() - t0) / period + 1;
-    const std::int64_t edge = t0 + k * period;
-    clock.advanceUs(edge - clock.nowUtime() + 50);
-    return edge;
-  }
-  Icm42688Config cfg;
-  ManualClock clock;
-  std::int64_t t0;
-  emulation::TrueMotionSource source{sim::Motion(sim::paperMotion(), EarthModel{})};
-  Icm42688Emulation chip;
-  EmulatedI2cBus bus;
-};
+using Rig = Icm42688Rig;
 
 TEST(DriversIcm42688, RecoversTheTrueMotionWithinOneLsb) {
   for (double accel_g : {2.0, 4.0, 16.0}) {

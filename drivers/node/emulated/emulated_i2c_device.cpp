@@ -39,7 +39,9 @@ class EmulatedI2cDeviceNode final : public I2cDevice {
     SystemClock* clock = &clock_;
     chip_ = make_chip(*m->source, [m, clock] { return m->elapsedS(clock->nowUtime()); });
     bus_.attach(setup.address, *chip_);
-    ticks_ = std::make_unique<TickTimer>(m->epoch_utime, static_cast<std::int64_t>(std::llround(1e6 / setup.odr_hz)));
+    // The pin: every ODR tick, or every watermark's worth of ticks with the FIFO.
+    const auto period_us = static_cast<std::int64_t>(std::llround(1e6 * setup.ticks_per_edge / setup.odr_hz));
+    ticks_ = std::make_unique<TickTimer>(m->epoch_utime, period_us);
   }
   I2cBus& bus() override { return bus_; }
   std::string sampling() const override { return "emulated data-ready line"; }

@@ -28,6 +28,11 @@ class I2cBus {
   virtual void writeRegister(std::uint8_t address, std::uint8_t reg, std::uint8_t value) = 0;
   // "/dev/i2c-1" or "emulated", for messages.
   virtual std::string name() const = 0;
+  // The longest read one transfer carries. A longer readRegisters() is split at increasing register
+  // addresses, which is wrong for a register that streams (a FIFO data port): such reads are chunked by
+  // the caller (RegisterDevice::readStream).
+  virtual std::size_t maxReadLength() const { return kUnlimitedRead; }
+  static constexpr std::size_t kUnlimitedRead = 1u << 16;
 
   std::uint8_t readRegister(std::uint8_t address, std::uint8_t reg) {
     std::uint8_t value = 0;

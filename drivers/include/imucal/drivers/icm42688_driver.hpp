@@ -2,13 +2,19 @@
 // TDK ICM-42688-P over I2C, after PX4's driver: a register table re-verified at run time, an explicit
 // reset / configure / read state machine and a counter for every failure.
 //
-// Register reads, not the FIFO: one 17-byte burst (temperature, accel, gyro, FSYNC stamp, INT_STATUS) per
-// data-ready edge fits one 32-byte SMBus block transfer, keeps every sample paired with the time stamp of
-// its own edge, and works on SMBus-only adapters and i2c-stub, where a FIFO_DATA register would return the
-// same byte forever. At the rates a hand calibration needs (100-1000 Hz) the bus has time for it; the FIFO
-// would pay off above a few kHz or when the host cannot keep up with every edge.
+// Two ways to read, chosen by Icm42688Config::fifo:
+// - Registers (the default): one 17-byte burst (temperature, accel, gyro, FSYNC stamp, INT_STATUS) per
+//   data-ready edge. It fits one 32-byte SMBus block, pairs every sample with its own edge's time and works
+//   on i2c-stub, whose FIFO_DATA register would return the same byte forever. At 100-1000 Hz the bus has
+//   time for it, but it costs one transfer and one message per sample.
+// - FIFO: the part queues 16-byte records (stream-to-FIFO, packet 3) and raises INT1 at a watermark; each
+//   edge costs one 3-byte read of INT_STATUS + FIFO_COUNT and then the records in as few transfers as the
+//   adapter allows (2 records per 32-byte SMBus block, all of them with I2C_RDWR). Above a few hundred Hz,
+//   or when the host cannot answer every edge in time, this is the way to read the part (PX4 does so).
+//   Record times are reconstructed (see readFifo), so they are only as good as the watermark edge's time.
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "imucal/drivers/clock.hpp"
 #include "imucal/drivers/counters.hpp"
@@ -21,6 +27,11 @@
 
 namespace imucal::drivers {
 
+struct Icm42688FifoConfig {
+  bool enabled = false;
+  int watermark_samples = 10;  // records per watermark interrupt, 1 .. 128 (the 2 KB FIFO / 16 bytes)
+};
+
 struct Icm42688Config {
   std::uint8_t address = 0x68;
   double accel_range_g = 16.0;     // 2, 4, 8, 16
@@ -30,6 +41,7 @@ struct Icm42688Config {
   RetryPolicy retry;
   int startup_attempts = 3;        // whole reset/configure sequences before giving up
   int reset_poll_limit = 5;        // reads of SOFT_RESET_CONFIG (1 ms apart) after the datasheet's wait
+  Icm42688FifoConfig fifo;
 };
 
 class Icm42688Driver {
@@ -42,13 +54,19 @@ class Icm42688Driver {
   // part does not become an ICM-42688-P by retrying) and when `startup_attempts` sequences all failed.
   void start();
 
-  // One sample after a data-ready edge stamped `edge_utime` (nullopt: no line, stamp with the read time).
-  // nullopt when there is no new sample (not ready, invalid data, bus failure: each counted). After a bus
-  // failure the device is reset and configured again on the next call.
+  // Register mode: one sample after a data-ready edge stamped `edge_utime` (nullopt: no line, stamp with
+  // the read time). nullopt when there is no new sample (not ready, invalid data, bus failure: each
+  // counted). After a bus failure the device is reset and configured again on the next call.
   std::optional<ImuReading> read(std::optional<std::int64_t> edge_utime);
 
+  // FIFO mode: the records in the FIFO after a watermark edge (nullopt: polled; then only once the
+  // watermark is reached), oldest first. Empty when there were none or the read failed (counted: a full
+  // FIFO or an impossible count flushes it; a bus failure resets the part as read() does).
+  std::vector<ImuReading> readFifo(std::optional<std::int64_t> edge_utime);
+
   // Reads every configuration register back and re-applies the ones that changed (counted in
-  // "config_mismatch"). Returns how many differed.
+  // "config_mismatch"); in FIFO mode a repair also flushes the FIFO, whose contents may not be packet 3.
+  // Returns how many differed.
   int verifyConfiguration();
 
   State state() const { return state_; }
@@ -59,6 +77,9 @@ class Icm42688Driver {
 
  private:
   void runStateMachine();
+  // Scales, flags saturation and maps axes; utime and temperature are the caller's.
+  ImuReading toReading(const std::int16_t accel[3], const std::int16_t gyro[3]);
+  void flushFifo();
 
   Icm42688Config config_;
   Counters counters_;
@@ -67,6 +88,7 @@ class Icm42688Driver {
   RegisterTable table_;
   State state_ = State::Reset;
   double accel_lsb_ = 0.0, gyro_lsb_ = 0.0;
+  std::optional<std::uint16_t> last_odr_time_;  // the previous record's, to flag the 16-bit wrap
 };
 
 }  // namespace imucal::drivers

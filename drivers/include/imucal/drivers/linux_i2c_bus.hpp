@@ -22,6 +22,8 @@ class LinuxI2cBus final : public I2cBus {
   void readRegisters(std::uint8_t address, std::uint8_t reg, std::uint8_t* buffer, std::size_t n) override;
   void writeRegister(std::uint8_t address, std::uint8_t reg, std::uint8_t value) override;
   std::string name() const override { return path_; }
+  // 32 on SMBus-only adapters; I2C_RDWR: i2c-dev refuses messages over 8192 bytes.
+  std::size_t maxReadLength() const override;
 
   bool usesPlainI2c() const { return plain_i2c_; }
 

@@ -26,6 +26,11 @@ class RegisterDevice {
   std::uint8_t readReg(std::uint8_t reg);
   void writeReg(std::uint8_t reg, std::uint8_t value);
   void readBurst(std::uint8_t reg, std::uint8_t* buffer, std::size_t n);
+  // n bytes from a register that streams (a FIFO data port), every transfer at `reg` and at most the bus's
+  // maximum long, rounded down to whole `unit`s (records) so no record straddles two transfers. A chunk
+  // whose transfer fails is retried whole: if the part had already given up some bytes, the stream is
+  // misaligned from there, which the caller's record checks must catch.
+  void readStream(std::uint8_t reg, std::uint8_t* buffer, std::size_t n, std::size_t unit);
   // Writes the bank register unless that bank is known to be selected.
   void selectBank(std::uint8_t bank);
   // The selected bank is unknown (after a reset, or when another program may have used the part).

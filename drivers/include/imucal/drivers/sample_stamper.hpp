@@ -13,7 +13,13 @@ namespace imucal::drivers {
 class SampleStamper {
  public:
   SampleStamper(double rate_hz, Counters& counters);
+  // pick() then check(), with a freshness tolerance of 1.5 periods.
   std::int64_t stamp(std::optional<std::int64_t> edge_utime, std::int64_t read_utime);
+  // The edge's time unless it is missing or was read more than `tolerance_us` after it ("stale_edge"),
+  // else the read time.
+  std::int64_t pick(std::optional<std::int64_t> edge_utime, std::int64_t read_utime, std::int64_t tolerance_us);
+  // Counts `t` going backwards or leaving a gap since the previous sample; returns t.
+  std::int64_t check(std::int64_t t);
   void restart() { last_.reset(); }
   std::int64_t periodUs() const { return period_us_; }
 

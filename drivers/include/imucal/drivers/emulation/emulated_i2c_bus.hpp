@@ -27,6 +27,9 @@ class EmulatedI2cBus final : public I2cBus {
     failure_errno_ = error_number;
   }
   int transfers() const { return transfers_; }
+  // An adapter with a transfer limit (SMBus: 32 bytes): longer reads fail with EINVAL, as i2c-dev's would.
+  void setMaxReadLength(std::size_t n) { max_read_ = n; }
+  std::size_t maxReadLength() const override { return max_read_; }
 
   void readRegisters(std::uint8_t address, std::uint8_t reg, std::uint8_t* buffer, std::size_t n) override;
   void writeRegister(std::uint8_t address, std::uint8_t reg, std::uint8_t value) override;
@@ -39,6 +42,7 @@ class EmulatedI2cBus final : public I2cBus {
   int failures_left_ = 0;
   int failure_errno_ = 0;
   int transfers_ = 0;
+  std::size_t max_read_ = kUnlimitedRead;
 };
 
 }  // namespace imucal::drivers::emulation
