@@ -6,7 +6,6 @@
 #include <csignal>
 #include <iostream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -21,7 +20,7 @@ namespace imucal::cli {
 namespace {
 
 struct EchoArgs {
-  std::string channel;  // a channel name or a POSIX regex over whole names, as LCM subscribes
+  std::string channel;  // a channel name or a regex over whole names, as LCM subscribes
   std::string lcm_url;
   std::string log;  // read this LCM log instead of subscribing
   bool json = false;

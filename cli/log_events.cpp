@@ -6,7 +6,7 @@ namespace imucal::cli {
 
 ChannelMatcher::ChannelMatcher(const std::string& regex, const std::string& option) {
   try {
-    regex_ = std::regex(regex, std::regex::extended);
+    regex_ = std::regex(regex);  // ECMAScript: Perl-like, as LCM's GRegex (PCRE)
   } catch (const std::regex_error& e) {
     throw io::InputError(option + " '" + io::excerpt(regex) + "' is not a regular expression: " + e.what());
   }

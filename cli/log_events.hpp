@@ -12,7 +12,8 @@
 
 namespace imucal::cli {
 
-// A channel name or a POSIX extended regex over whole names, as lcm::LCM::subscribe matches channels.
+// A channel name or a regex over whole names, as lcm::LCM::subscribe matches channels (LCM anchors a
+// Perl-compatible GRegex with ^...$; std::regex's ECMAScript grammar agrees on what channel patterns use).
 class ChannelMatcher {
  public:
   // Throws io::InputError naming `option` when `regex` is not a regular expression.

@@ -5,8 +5,6 @@
 // channel past --timeout, is an error.
 #include <gtest/gtest.h>
 
-#include <sstream>
-
 #include "cli_run.hpp"
 #include "input_error_of.hpp"
 #include "lcm_sample_messages.hpp"

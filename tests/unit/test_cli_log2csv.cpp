@@ -269,6 +269,11 @@ TEST_F(CliLog2Csv, ChannelRegexMatchesWholeNamesAndCollidingNamesStayApart) {
   EXPECT_EQ(csv("IMUCAL_IMU.csv").size(), 2u);
   EXPECT_FALSE(std::filesystem::exists(out + "/IMUCAL_IMU_RAW.csv"));
 
+  const CommandRun raw = run("--channel 'IMUCAL_IMU\\w+'");  // a Perl class, as LCM's GRegex takes
+  ASSERT_EQ(raw.status, 0) << raw.output;
+  EXPECT_CONTAINS(raw.output, "\n  IMUCAL_IMU_RAW           imu_sample_t                 1         1  ");
+  EXPECT_CONTAINS(raw.output, "3 on channels not matching --channel");
+
   const CommandRun bad = run("--channel '('");
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_CONTAINS(bad.output, "--channel '(' is not a regular expression");
