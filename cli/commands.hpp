@@ -19,5 +19,7 @@ void addBoundCommand(CLI::App& app);
 void addPlanCommand(CLI::App& app);
 void addDiagnoseCommand(CLI::App& app);
 void addWatchCommand(CLI::App& app);
+void addEchoCommand(CLI::App& app);
+void addLog2CsvCommand(CLI::App& app);
 
 }  // namespace imucal::cli

@@ -1,4 +1,5 @@
-// imucal: field calibration of consumer MEMS IMUs (simulate, calibrate, Monte Carlo study, bound, plan, diagnose).
+// imucal: field calibration of consumer MEMS IMUs (simulate, calibrate, Monte Carlo study, bound, plan, diagnose;
+// watch, echo and log2csv for the daemon's LCM messages).
 #include <cstdio>
 #include <exception>
 #include <iostream>
@@ -16,6 +17,8 @@ int main(int argc, char** argv) {
   imucal::cli::addPlanCommand(app);
   imucal::cli::addDiagnoseCommand(app);
   imucal::cli::addWatchCommand(app);
+  imucal::cli::addEchoCommand(app);
+  imucal::cli::addLog2CsvCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
