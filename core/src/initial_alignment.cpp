@@ -24,7 +24,7 @@ StateMat priorCovariance(const FilterConfig& config, const StateLayout& layout, 
     const double sigma = config.model[info.block].sigma;
     P.diagonal().segment(layout.offset(info.block), info.size()).setConstant(sigma * sigma);
   }
-  const std::vector<int> carried = carriedIndices(layout, config.carried);
+  const std::vector<int> carried = indicesOf(config.carried.names, layout.paramNames());
   for (std::size_t i = 0; i < carried.size(); ++i)
     for (std::size_t j = 0; j < carried.size(); ++j)
       if (carried[i] >= 0 && carried[j] >= 0)

@@ -1,5 +1,7 @@
 #include "imucal/core/param_vector.hpp"
 
+#include <algorithm>
+
 #include <stdexcept>
 
 namespace imucal {
@@ -57,22 +59,18 @@ VecX priorMean(const StateLayout& layout, const ModelOptions& options) {
   return x;
 }
 
-}  // namespace imucal
-
-namespace imucal {
-
-std::vector<int> carriedIndices(const StateLayout& layout, const CarriedPrior& carried) {
-  const std::vector<std::string> names = layout.paramNames();
-  std::vector<int> index(carried.names.size(), -1);
-  for (std::size_t i = 0; i < carried.names.size(); ++i)
-    for (std::size_t j = 0; j < names.size(); ++j)
-      if (names[j] == carried.names[i]) index[i] = static_cast<int>(j);
+std::vector<int> indicesOf(const std::vector<std::string>& names, const std::vector<std::string>& in) {
+  std::vector<int> index(names.size(), -1);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const auto it = std::find(in.begin(), in.end(), names[i]);
+    if (it != in.end()) index[i] = static_cast<int>(it - in.begin());
+  }
   return index;
 }
 
 VecX priorMean(const StateLayout& layout, const FilterConfig& config) {
   VecX x = priorMean(layout, config.model);
-  const std::vector<int> index = carriedIndices(layout, config.carried);
+  const std::vector<int> index = indicesOf(config.carried.names, layout.paramNames());
   for (std::size_t i = 0; i < index.size(); ++i)
     if (index[i] >= 0) x(index[i]) = config.carried.mean(static_cast<Eigen::Index>(i));
   return x;

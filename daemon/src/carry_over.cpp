@@ -6,6 +6,7 @@
 
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/param_registry.hpp"
+#include "imucal/core/param_vector.hpp"
 
 namespace imucal::daemon {
 
@@ -30,17 +31,19 @@ CarriedPrior carriedPrior(const StoredCalibration& earlier, const FilterConfig& 
   // Kept: the earlier parameters this filter has whose aged variance is still below the registry's prior.
   std::vector<std::size_t> from;  // index in the stored calibration
   std::vector<double> aged;       // its aged variance
+  const std::vector<int> in_layout = indicesOf(earlier.names, names);
   for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < names.size(); ++j) {
-      if (names[j] != earlier.names[i] || blockInfo(layout.params()[j].block).session_only) continue;
-      const double prior_var = prior_sigma(static_cast<Eigen::Index>(j)) * prior_sigma(static_cast<Eigen::Index>(j));
-      const double forget = isBias(layout.params()[j].block) ? config.bias_forget : config.other_forget;
-      const double age = std::max(0.0, now - informationTime(earlier, i));
-      const double var = earlier.covariance[i * n + i] + prior_var * age / forget;
-      if (std::isfinite(var) && var > 0.0 && var < prior_var) {
-        from.push_back(i);
-        aged.push_back(var);
-      }
+    if (in_layout[i] < 0) continue;
+    const auto j = static_cast<std::size_t>(in_layout[i]);
+    const ParamBlock block = layout.params()[j].block;
+    if (blockInfo(block).session_only) continue;
+    const double prior_var = prior_sigma(in_layout[i]) * prior_sigma(in_layout[i]);
+    const double forget = isBias(block) ? config.bias_forget : config.other_forget;
+    const double age = std::max(0.0, now - informationTime(earlier, i));
+    const double var = earlier.covariance[i * n + i] + prior_var * age / forget;
+    if (std::isfinite(var) && var > 0.0 && var < prior_var) {
+      from.push_back(i);
+      aged.push_back(var);
     }
   }
   CarriedPrior carried;
@@ -66,9 +69,9 @@ CarriedPrior carriedPrior(const StoredCalibration& earlier, const FilterConfig& 
 CarriedMisfit carriedMisfit(const CarriedPrior& carried, const std::vector<std::string>& names, const VecX& estimate,
                             const MatX& covariance) {
   std::vector<std::pair<Eigen::Index, Eigen::Index>> pairs;  // (in carried, in the result)
+  const std::vector<int> in_result = indicesOf(carried.names, names);
   for (std::size_t c = 0; c < carried.names.size(); ++c)
-    for (std::size_t j = 0; j < names.size(); ++j)
-      if (names[j] == carried.names[c]) pairs.emplace_back(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(j));
+    if (in_result[c] >= 0) pairs.emplace_back(static_cast<Eigen::Index>(c), in_result[c]);
   CarriedMisfit m;
   const auto n = static_cast<Eigen::Index>(pairs.size());
   if (n == 0) return m;
@@ -111,15 +114,11 @@ std::vector<double> informationTimes(const std::vector<std::string>& names, cons
                                      double now, double narrowed) {
   std::vector<double> out(names.size(), now);
   if (!earlier) return out;
+  const std::vector<int> in_carried = indicesOf(names, carried.names), in_earlier = indicesOf(names, earlier->names);
   for (std::size_t j = 0; j < names.size() && j < sigmas.size(); ++j) {
-    for (std::size_t c = 0; c < carried.names.size(); ++c) {
-      if (carried.names[c] != names[j]) continue;
-      const auto cc = static_cast<Eigen::Index>(c);
-      if (sigmas[j] >= narrowed * std::sqrt(carried.covariance(cc, cc))) {
-        for (std::size_t i = 0; i < earlier->names.size(); ++i)
-          if (earlier->names[i] == names[j]) out[j] = informationTime(*earlier, i);
-      }
-    }
+    const int c = in_carried[j];
+    if (c < 0 || in_earlier[j] < 0 || sigmas[j] < narrowed * std::sqrt(carried.covariance(c, c))) continue;
+    out[j] = informationTime(*earlier, static_cast<std::size_t>(in_earlier[j]));
   }
   return out;
 }

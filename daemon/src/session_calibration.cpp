@@ -14,17 +14,19 @@ namespace imucal::daemon {
 namespace {
 // Enough for the convergence times; a session at 8 kHz would otherwise keep 0.5 kB for each sample.
 constexpr std::size_t kMaxHistoryEpochs = 5000;
-// Zero-velocity mean NIS above which a session turned about a fixed centre is tried as free moves: a model
-// that fits gives about 1, a hand's sway about the centre up to 2 (the board's real turns: 0.7-1.3), a
-// device carried 10-30 cm between poses 5 and more. Below the refusal limit (consistency.hpp), so such a
-// session is not refused first.
-constexpr double kCentreMovedNis = 3.0;
 
 CalibrationResult run(const SessionInput& in, const std::vector<HeadingSample>& heading, const FilterConfig& filter) {
   CalibrateOptions options;
   options.max_history_epochs = kMaxHistoryEpochs;
   options.check_halves = true;
   return calibrate(in.imu, heading, filter, options);
+}
+
+// The same filter with the centre held only where the data say it was at rest (free_moves.hpp).
+FilterConfig asFreeMoves(FilterConfig filter) {
+  filter.measurements.free_moves = true;
+  filter.measurements.hold_turns = true;
+  return filter;
 }
 
 // A session of several moves under a centre config: the hand may have carried the device between them.
@@ -34,9 +36,7 @@ std::optional<CalibrationResult> asFreeMovesIfCarried(const SessionInput& in, co
                                                       FilterConfig& filter, SessionOutcome& out) {
   const MeasurementConfig& m = filter.measurements;
   if (m.free_moves || !m.zero_velocity || in.moves == 1) return std::nullopt;
-  FilterConfig free = filter;
-  free.measurements.free_moves = true;
-  free.measurements.hold_turns = true;
+  const FilterConfig free = asFreeMoves(filter);
   CalibrationResult moved;
   try {
     moved = run(in, heading, free);
@@ -85,14 +85,14 @@ CalibrationResult calibrateWithFallbacks(const SessionInput& in, const std::vect
       result = run(in, heading, filter);
     }
   }
+  // The centre moved over the session as a whole (the limit a single move is judged by; below the refusal
+  // limit of consistency.hpp, so such a session is not refused first).
   if (!filter.measurements.free_moves && filter.measurements.zero_velocity &&
-      result.stats.zero_velocity_updates > 0 && result.stats.velocity_nis_mean > kCentreMovedNis) {
+      result.stats.zero_velocity_updates > 0 && result.stats.velocity_nis_mean > kHeldMoveNisLimit) {
     std::ostringstream why;
     why << "calibrated as free moves: turned about a fixed centre the zero-velocity mean NIS was "
         << result.stats.velocity_nis_mean << " (the device was carried between poses)";
-    FilterConfig moves = filter;
-    moves.measurements.free_moves = true;
-    moves.measurements.hold_turns = true;
+    const FilterConfig moves = asFreeMoves(filter);
     CalibrationResult moved = run(in, heading, moves);
     if (inconsistencies(moved).empty() && moved.stats.velocity_nis_mean < result.stats.velocity_nis_mean) {
       out.notes.push_back(why.str());

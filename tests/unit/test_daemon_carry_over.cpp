@@ -117,6 +117,16 @@ ServiceConfig fullModel(bool carry) {
   return c;
 }
 
+// A session of the simulated recording for the daemon's sensor imu0, under fullModel(carry)'s filter.
+SessionInput sessionOf(const sim::SimOutput& out, bool carry) {
+  SessionInput in;
+  in.sensor_id = "imu0";
+  in.imu = out.imu;
+  in.heading = out.heading;
+  in.filter = fullModel(carry).filter;
+  return in;
+}
+
 VecX truthOf(const StoredCalibration& c, const sim::SimConfig& sim, const FilterConfig& filter) {
   const FilterConfig effective = effectiveConfig(filter);
   const StateLayout layout = StateLayout::make(effective.model, false);
@@ -197,11 +207,7 @@ TEST(DaemonCarryOver, APaperTurnAnHourAfterTheProtocolKeepsWhatOnlyTheProtocolRe
 TEST(DaemonCarryOver, AnEarlierCalibrationTheSessionContradictsIsDropped) {
   const sim::SimConfig paper = paperWithProtocolErrors();
   const sim::SimOutput out = sim::simulate(paper, 43);
-  SessionInput in;
-  in.sensor_id = "imu0";
-  in.imu = out.imu;
-  in.heading = out.heading;
-  in.filter = fullModel(true).filter;
+  SessionInput in = sessionOf(out, true);
   const FilterConfig effective = effectiveConfig(in.filter);
   const StateLayout layout = StateLayout::make(effective.model, false);
   StoredCalibration wrong;
@@ -239,11 +245,7 @@ TEST(DaemonCarryOver, AnEarlierCalibrationTheSessionContradictsIsDropped) {
 TEST(DaemonCarryOver, ACarriedDeviceIsCalibratedAsFreeMoves) {
   const sim::SimConfig moves = io::loadSimConfig(kConfigs + "handmove-sim.yaml");
   const sim::SimOutput out = sim::simulate(moves, 44);
-  SessionInput in;
-  in.sensor_id = "imu0";
-  in.imu = out.imu;
-  in.heading = out.heading;
-  in.filter = fullModel(false).filter;
+  SessionInput in = sessionOf(out, false);
   ASSERT_FALSE(in.filter.measurements.free_moves);
   const SessionOutcome o = calibrateSession(in);
   ASSERT_TRUE(o.calibration.has_value()) << o.failure;

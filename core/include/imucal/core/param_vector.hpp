@@ -1,6 +1,7 @@
 #pragma once
 // Between the filter's parameter vector (the state's calibration blocks, in registry order) and the
 // sensor model it stands for. The only code that maps a registry entry to a field of the sensor model.
+#include <string>
 #include <vector>
 
 #include "imucal/core/filter_config.hpp"
@@ -27,7 +28,7 @@ VecX toParamVector(const StateLayout& layout, const CalibrationParams& p);
 VecX priorMean(const StateLayout& layout, const ModelOptions& options);
 // The same, with config.carried's means where it names a parameter.
 VecX priorMean(const StateLayout& layout, const FilterConfig& config);
-// Index in the layout's parameters of each name carried, -1 where the layout has no such parameter.
-std::vector<int> carriedIndices(const StateLayout& layout, const CarriedPrior& carried);
+// Index in `in` of each of `names`, -1 where `in` has no such name (parameter names are unique).
+std::vector<int> indicesOf(const std::vector<std::string>& names, const std::vector<std::string>& in);
 
 }  // namespace imucal
