@@ -3,14 +3,15 @@
 # calibration) at 100 Hz, 1 kHz and 8 kHz IMU input, published in real time by imucal-sim-pub, one message
 # per sample (single) or one imu_batch_t per 10 ms (batched, as a FIFO read at a 100 Hz watermark). Runs in
 # a private network namespace (lo only). Usage: bench/daemon_load.sh BUILD_DIR
+# (MODES="single batched" and RATES="100 1000 8000" by default; set either to run a subset).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/../tests/integration/private_netns.sh"
 build="$1"
 trap 'kill -9 $(jobs -p) 2>/dev/null || true; rm -rf "$tmp"' EXIT
 ticks=$(getconf CLK_TCK)
 printf '%8s %8s %10s %12s %12s %s\n' rate_hz input cpu_pct peak_rss_mb latency_ms result
-for mode in single batched; do
-for rate in 100 1000 8000; do
+for mode in ${MODES:-single batched}; do
+for rate in ${RATES:-100 1000 8000}; do
   batch=""
   if [ "$mode" = batched ]; then batch="--batch $(( rate / 100 ))"; fi
   cat > "$tmp/sim.yaml" <<YAML

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -431,8 +432,13 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
 
 // The recording's halves, each calibrated alone: a parameter whose halves disagree by more than 4 combined
 // sigma is not stable over the recording, whatever its sigma says.
-void checkHalves(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
-                 const FilterConfig& config, CalibrationResult& result) {
+struct Halves {
+  CalibrationResult first, second;
+  std::string error;  // why they could not be calibrated
+};
+
+Halves calibrateHalves(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
+                       const FilterConfig& config) {
   const double mid = 0.5 * (imu.front().t + imu.back().t);
   const auto split = [mid](const auto& v, bool first) {
     std::remove_cv_t<std::remove_reference_t<decltype(v)>> out;
@@ -445,14 +451,23 @@ void checkHalves(const std::vector<ImuSample>& imu, const std::vector<HeadingSam
   // Each half on its own data only: a carried prior both shared would make them agree by construction.
   FilterConfig alone = config;
   alone.carried = {};
-  CalibrationResult a, b;
+  Halves h;
   try {
-    a = calibrateOnce(split(imu, true), split(heading, true), alone, plain);
-    b = calibrateOnce(split(imu, false), split(heading, false), alone, plain);
+    h.first = calibrateOnce(split(imu, true), split(heading, true), alone, plain);
+    h.second = calibrateOnce(split(imu, false), split(heading, false), alone, plain);
   } catch (const std::exception& e) {
-    result.warnings.push_back(std::string("halves: not compared (") + e.what() + ")");
+    h.error = e.what();
+  }
+  return h;
+}
+
+void compareHalves(const Halves& h, CalibrationResult& result) {
+  if (!h.error.empty()) {
+    result.warnings.push_back("halves: not compared (" + h.error + ")");
     return;
   }
+  const CalibrationResult& a = h.first;
+  const CalibrationResult& b = h.second;
   if (a.names != result.names || b.names != result.names) return;
   // A half that could not calibrate alone (its innovations contradict the model: the passes ran away on
   // too little data for the prior's width) says nothing about the whole's stability.
@@ -481,8 +496,16 @@ void checkHalves(const std::vector<ImuSample>& imu, const std::vector<HeadingSam
 
 CalibrationResult calibrate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
                             const FilterConfig& config, const CalibrateOptions& options) {
+  if (!options.check_halves || imu.size() < 2 || imu.back().t - imu.front().t < options.min_halves_duration)
+    return calibrateOnce(imu, heading, config, options);
+  // The halves need nothing from the whole: calibrated beside it, they cost the caller's wait little.
+  // (The future's destructor waits for them if the whole throws.)
+  std::future<Halves> halves = std::async(std::launch::async, calibrateHalves, std::cref(imu), std::cref(heading),
+                                          std::cref(config));
   CalibrationResult result = calibrateOnce(imu, heading, config, options);
-  if (options.check_halves && result.duration >= options.min_halves_duration) checkHalves(imu, heading, config, result);
+  const Halves h = halves.get();
+  // The whole may start later than the recording (its first quiet stretch): judged on what it used.
+  if (result.duration >= options.min_halves_duration) compareHalves(h, result);
   return result;
 }
 

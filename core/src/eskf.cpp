@@ -13,6 +13,7 @@ Eskf::Eskf(const FilterConfig& config)
     : config_(config),
       layout_(StateLayout::make(config.model, config.measurements.centre_motion.enabled)),
       earth_(config.earth),
+      outside_state_(outsideStateValues(layout_, config.model)),
       dynamics_(layout_, config) {
   params_ = VecX::Zero(layout_.paramCount());
   P_ = StateMat::Identity(layout_.size, layout_.size);
@@ -48,7 +49,8 @@ void Eskf::initialize(const ImuSample& first_raw, const NavState& nav, const Vec
 }
 
 void Eskf::refreshModel() {
-  model_ = toCalibrationParams(layout_, params_, config_.model);
+  model_ = outside_state_;
+  setStateParams(model_, layout_, params_);
   accel_gain_inv_ = model_.imu.accel.gainMatrix().inverse();
   gyro_gain_inv_ = model_.imu.gyro.gainMatrix().inverse();
   earth_ = config_.earth;

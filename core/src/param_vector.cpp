@@ -33,15 +33,24 @@ double paramValue(const CalibrationParams& p, const ParamRef& ref) {
 
 void setParamValue(CalibrationParams& p, const ParamRef& ref, double value) { *field(p, ref) = value; }
 
-CalibrationParams toCalibrationParams(const StateLayout& layout, const VecX& params, const ModelOptions& options) {
-  if (params.size() != layout.paramCount()) throw std::invalid_argument("toCalibrationParams: wrong parameter count");
+CalibrationParams outsideStateValues(const StateLayout& layout, const ModelOptions& options) {
   CalibrationParams p;
   for (const auto& info : paramBlocks()) {
     if (layout.has(info.block)) continue;
     for (int c = 0; c < info.size(); ++c) setParamValue(p, {info.block, c}, options.mean({info.block, c}));
   }
+  return p;
+}
+
+void setStateParams(CalibrationParams& p, const StateLayout& layout, const VecX& params) {
+  if (params.size() != layout.paramCount()) throw std::invalid_argument("setStateParams: wrong parameter count");
   const auto& refs = layout.params();
   for (std::size_t i = 0; i < refs.size(); ++i) setParamValue(p, refs[i], params(static_cast<Eigen::Index>(i)));
+}
+
+CalibrationParams toCalibrationParams(const StateLayout& layout, const VecX& params, const ModelOptions& options) {
+  CalibrationParams p = outsideStateValues(layout, options);
+  setStateParams(p, layout, params);
   return p;
 }
 

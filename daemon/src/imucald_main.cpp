@@ -13,6 +13,7 @@
 #include <chrono>
 #include <exception>
 #include <optional>
+#include <thread>
 
 #include "imucal/daemon/daemon_config.hpp"
 #include "imucal/daemon/lcm_node.hpp"
@@ -45,6 +46,18 @@ DaemonConfig effectiveConfig(const Options& o) {
   if (o.rate) c.node.calibration_rate_hz = *o.rate;
   c.service.background_calibration = true;  // keep receiving while a session calibrates
   return c;
+}
+
+// Rest between wake-ups that found messages; the delay it adds is far below what a consumer of the
+// calibration or the progress notices, and LCM's receive queue holds thousands of messages meanwhile.
+constexpr auto kMinWakeInterval = std::chrono::milliseconds(2);
+// At most this many messages per wake-up, so that signals and finished calibrations are not starved.
+constexpr int kMaxMessagesPerWake = 1000;
+
+void drainMessages(lcm::LCM& lcm) {
+  if (lcm.handle() != 0) return;
+  for (int i = 1; i < kMaxMessagesPerWake && lcm.handleTimeout(0) > 0; ++i) {
+  }
 }
 
 // The signals arrive on a descriptor polled with LCM's, so they are handled between messages.
@@ -117,6 +130,7 @@ int run(const Options& o) {
       last_ping = std::chrono::steady_clock::now();
     }
     const int n = poll(fds, 3, 200);
+    const auto wake = std::chrono::steady_clock::now();
     if (n < 0 && errno != EINTR) throw std::runtime_error("poll failed");
     if (n > 0 && (fds[1].revents & POLLIN)) {
       signalfd_siginfo info{};
@@ -130,8 +144,12 @@ int run(const Options& o) {
       }
     }
     if (!stop && n > 0 && (fds[2].revents & POLLIN)) node.collectFinished();
-    if (!stop && n > 0 && (fds[0].revents & POLLIN)) lcm.handle();
+    const bool messages = !stop && n > 0 && (fds[0].revents & POLLIN);
+    if (messages) drainMessages(lcm);
     node.tick();
+    // A sensor sending one message per sample at kHz rates would otherwise wake this thread for each:
+    // resting between wake-ups lets the messages gather in LCM's queue and be handled together.
+    if (messages) std::this_thread::sleep_until(wake + kMinWakeInterval);
   }
   sd_notify(0, "STOPPING=1");
   close(sig_fd);

@@ -181,41 +181,48 @@ TEST(Eskf, ZeroVelocityAndPositionUpdatesMatchSequentialKalman) {
   const NavState nom = f.nav();
   const VecX par = f.params();
 
+  // The reference in long double: the filter's rounding is then measured against a nearly exact answer,
+  // not against another double computation's rounding.
+  using MatL = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
+  using VecL = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
   const int n = layout.size;
-  MatX P = P_prior;
-  VecX dx = VecX::Zero(n);
+  MatL P = MatX(P_prior).cast<long double>();
+  VecL dx = VecL::Zero(n);
   const auto scalar = [&](int idx, double z_minus_nominal, double r) {
-    VecX h = VecX::Zero(n);
-    h(idx) = 1.0;
-    const double s = h.dot(P * h) + r;
-    const VecX K = P * h / s;
-    const double y = z_minus_nominal - h.dot(dx);
+    VecL h = VecL::Zero(n);
+    h(idx) = 1.0L;
+    const long double s = h.dot(P * h) + r;
+    const VecL K = P * h / s;
+    const long double y = z_minus_nominal - h.dot(dx);
     dx += K * y;
-    P = (MatX::Identity(n, n) - K * h.transpose()) * P;
-    return y * y / s;
+    P = (MatL::Identity(n, n) - K * h.transpose()) * P;
+    return static_cast<double>(y * y / s);
   };
   double nis_v = 0.0;
   for (int i = 0; i < 3; ++i) nis_v += scalar(L::kVel + i, -nom.v(i), 1e-4);
   const Vec3 p_ref(0.0, 0.005, 0.0);
   for (int i = 0; i < 3; ++i) scalar(L::kPos + i, p_ref(i) - nom.p(i), 4e-4);
+  const MatX P_ref = (0.5L * (P + P.transpose())).cast<double>();
+  const VecX dx_ref = dx.cast<double>();
 
   EXPECT_NEAR(f.updateZeroVelocity(0.01), nis_v, 1e-9 * nis_v);
   f.updateConstantPosition(p_ref, 0.02);
+  // Six updates in double, each a few roundings per element, through a covariance whose variances span
+  // about eight orders of magnitude: errors of 1e-13 of the largest element (and of the largest
+  // correction) are rounding; a wrong formula is off by far more.
   const double scale = MatX(P_prior).cwiseAbs().maxCoeff();
-  EXPECT_LT((MatX(f.covariance()) - 0.5 * (P + P.transpose())).cwiseAbs().maxCoeff(), 1e-12 * scale);
+  EXPECT_LT((MatX(f.covariance()) - P_ref).cwiseAbs().maxCoeff(), 1e-13 * scale);
+  const double dx_scale = dx_ref.cwiseAbs().maxCoeff();
   const VecX est = f.estimatedParams();
-  EXPECT_LT((est - (par + dx.segment(L::kParamStart, layout.paramCount()))).cwiseAbs().maxCoeff(), 1e-13);
+  EXPECT_LT((est - (par + dx_ref.segment(L::kParamStart, layout.paramCount()))).cwiseAbs().maxCoeff(), 1e-13 * dx_scale);
   const NavState e = f.estimatedNav();
-  // The filter's Joseph form and this simple form differ by rounding: to the covariance's 1e-12 of the
-  // corrections' size.
-  const double dx_scale = dx.cwiseAbs().maxCoeff();
-  EXPECT_LT((e.v - (nom.v + dx.segment<3>(L::kVel))).norm(), 1e-12 * dx_scale);
-  EXPECT_LT((e.p - (nom.p + dx.segment<3>(L::kPos))).norm(), 1e-12 * dx_scale);
-  const Quat q_ref = rotationVectorToQuat(dx.segment<3>(L::kAtt)) * nom.q_nb;
-  EXPECT_LT(quatToRotationVector(e.q_nb * q_ref.conjugate()).norm(), 1e-15);
+  EXPECT_LT((e.v - (nom.v + dx_ref.segment<3>(L::kVel))).norm(), 1e-13 * dx_scale);
+  EXPECT_LT((e.p - (nom.p + dx_ref.segment<3>(L::kPos))).norm(), 1e-13 * dx_scale);
+  const Quat q_ref = rotationVectorToQuat(dx_ref.segment<3>(L::kAtt)) * nom.q_nb;
+  EXPECT_LT(quatToRotationVector(e.q_nb * q_ref.conjugate()).norm(), 1e-13 * dx_scale);
   // The updates did move things through the correlations (the test would be empty otherwise).
-  EXPECT_GT(dx.segment<3>(L::kAtt).norm(), 1e-6);
-  EXPECT_GT(dx.segment(L::kParamStart, layout.paramCount()).norm(), 1e-6);
+  EXPECT_GT(dx_ref.segment<3>(L::kAtt).norm(), 1e-6);
+  EXPECT_GT(dx_ref.segment(L::kParamStart, layout.paramCount()).norm(), 1e-6);
 }
 
 // A filter at rest, level, with the given yaw and yaw variance.

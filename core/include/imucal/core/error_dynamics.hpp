@@ -30,7 +30,9 @@ struct Linearization {
 // d(corrected)/d(block) of one sensor-model block, 3 x block size, given gain^-1 and the corrected value
 // the block multiplies (specific force for the accelerometer and g-sensitivity, rate for the gyro).
 // Errors are true minus estimated, so a positive bias error lowers the corrected value.
-MatX blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value);
+// On the stack: the filter builds these every step, and a 3x3 matrix is the largest block.
+using BlockJacobian = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, 9>;
+BlockJacobian blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value);
 
 class ErrorDynamics {
  public:
@@ -53,7 +55,10 @@ class ErrorDynamics {
   ParamRows paramRows(const Linearization& lin) const;
   void applyF(const Linearization& lin, const ParamRows& param_rows, const StateMat& X, StateMat& out) const;
 
-  std::vector<Eigen::Index> dynamic_rows_;  // the states F has rows for: position, velocity, attitude, centre
+  // The states F has rows for: position, velocity, attitude, centre. Fixed capacity: the propagation
+  // indexes with it every step, and an index list on the heap would be copied there each time.
+  static constexpr int kMaxDynamicRows = StateLayout::kAccelBias + StateLayout::kCentreStates;
+  Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxDynamicRows, 1> dynamic_rows_;
   StateLayout layout_;
   EarthModel earth_;
   double q_vel_;   // accel white noise PSD

@@ -110,6 +110,7 @@ class Eskf {
   FilterConfig config_;
   StateLayout layout_;
   EarthModel earth_;  // config_.earth with the estimated gravity error added
+  CalibrationParams outside_state_;  // the sensor model's blocks the state lacks, at their prior means
   CalibrationParams model_;
   Mat3 accel_gain_inv_ = Mat3::Identity();
   Mat3 gyro_gain_inv_ = Mat3::Identity();

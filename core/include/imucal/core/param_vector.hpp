@@ -22,6 +22,10 @@ void setParamValue(CalibrationParams& p, const ParamRef& ref, double value);
 
 // The state's parameters, with every block outside the state at its configured (prior mean) value.
 CalibrationParams toCalibrationParams(const StateLayout& layout, const VecX& params, const ModelOptions& options);
+// The two halves of it, for a filter that refreshes its model every step: the blocks outside the state
+// (fixed while the options are), then the state's own values written over them.
+CalibrationParams outsideStateValues(const StateLayout& layout, const ModelOptions& options);
+void setStateParams(CalibrationParams& p, const StateLayout& layout, const VecX& params);
 // The state's parameters of a full model (a simulator's truth, say).
 VecX toParamVector(const StateLayout& layout, const CalibrationParams& p);
 // Prior means of the state's parameters.
