@@ -116,3 +116,22 @@ TEST(InstallTree, PkgConfigGivesTheHeadersAndNoStrictAliasing) {
     found = found || fs::weakly_canonical((*it)[1].str()) == fs::weakly_canonical(t.root() + "/include");
   EXPECT_TRUE(found) << r.output;
 }
+
+// systemd-analyze verify --root on the tree: it resolves ExecStart, ExecReload and the units' dependencies
+// inside the root, so the root gets this machine's own unit directory (the targets) and kill. A missing
+// program fails it ("Command ... is not executable").
+TEST(InstallTree, UnitsPassSystemdAnalyzeVerify) {
+  if (runCommand("command -v systemd-analyze").status != 0) GTEST_SKIP() << "no systemd-analyze here";
+  const auto& t = installedTree();
+  ASSERT_TRUE(t.ok) << t.log;
+  const fs::path root = t.destdir;
+  fs::create_directories(root / "lib/systemd/system");
+  fs::copy("/lib/systemd/system", root / "lib/systemd/system",
+           fs::copy_options::recursive | fs::copy_options::skip_existing | fs::copy_options::copy_symlinks);
+  fs::create_directories(root / "bin");
+  fs::copy_file("/bin/kill", root / "bin/kill", fs::copy_options::skip_existing);
+  std::string units;
+  for (const auto& u : kUnits) units += " '" + t.lib() + "/systemd/system/" + u + "'";
+  const auto r = runCommand("systemd-analyze verify --root='" + root.string() + "'" + units);
+  EXPECT_EQ(r.status, 0) << r.output;
+}
