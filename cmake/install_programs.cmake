@@ -19,9 +19,4 @@ install(FILES ${IMUCAL_LCMTYPES_JAR} DESTINATION ${CMAKE_INSTALL_DATADIR}/java R
 
 include(${CMAKE_CURRENT_LIST_DIR}/install_dev.cmake)
 
-# Debian policy wants the licence in every package's doc directory, named after the package.
-install(FILES ${PROJECT_SOURCE_DIR}/packaging/copyright DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/imucal COMPONENT imucal)
-install(FILES ${PROJECT_SOURCE_DIR}/packaging/copyright DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/imucal-tools
-        COMPONENT tools)
-install(FILES ${PROJECT_SOURCE_DIR}/packaging/copyright DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/imucal-dev
-        COMPONENT dev)
+include(${CMAKE_CURRENT_LIST_DIR}/install_docs.cmake)

@@ -3,7 +3,7 @@
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME imucal)
 set(CPACK_PACKAGE_VENDOR "imucal developers")
-set(CPACK_PACKAGE_CONTACT "imucal developers <imucal@example.org>")
+set(CPACK_PACKAGE_CONTACT "${IMUCAL_MAINTAINER}")
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY "hand calibration of MEMS IMUs with an error-state Kalman filter")
 set(CPACK_RESOURCE_FILE_LICENSE ${PROJECT_SOURCE_DIR}/LICENSE)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
@@ -16,7 +16,6 @@ set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
 set(CPACK_DEBIAN_PACKAGE_PRIORITY optional)
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_HOMEPAGE "https://example.org/imucal")
 
 set(CPACK_DEBIAN_IMUCAL_PACKAGE_NAME imucal)
 # adduser: the postinst creates the user and groups with it.

@@ -20,8 +20,12 @@ if ((${#need[@]} > 0)); then
 fi
 
 step "build and package ($build, prefix /usr, no tests)"
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_INSTALL_PREFIX=/usr \
-  -DIMUCAL_BUILD_TESTS=OFF -DIMUCAL_BUILD_BENCHMARKS=OFF >/dev/null
+# Debian's hardening flags (stack protector, fortify, relro), as a package build gets them from dpkg-buildflags.
+# Warnings stay warnings here: the development build (-Werror) is where they are fixed.
+CXXFLAGS="$(dpkg-buildflags --get CXXFLAGS) $(dpkg-buildflags --get CPPFLAGS)" \
+LDFLAGS="$(dpkg-buildflags --get LDFLAGS)" \
+  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_INSTALL_PREFIX=/usr \
+  -DIMUCAL_BUILD_TESTS=OFF -DIMUCAL_BUILD_BENCHMARKS=OFF -DIMUCAL_WERROR=OFF >/dev/null
 cmake --build "$build" -j"$(nproc)"
 rm -rf "$build/debs"
 (cd "$build" && cpack -G DEB -B "$build/debs" >/dev/null)

@@ -47,6 +47,7 @@ TEST(InstallTree, HoldsEveryFileAndNoTestProgram) {
       "/share/cmake/imucal/imucalTargets.cmake", "/share/cmake/imucal/imucalConfigVersion.cmake",
       "/share/pkgconfig/imucal-lcmtypes.pc",     "/share/doc/imucal/copyright",
       "/share/doc/imucal-tools/copyright",       "/share/doc/imucal-dev/copyright",
+      "/share/doc/imucal/changelog.gz",
       "/include/imucal/lcmtypes.hpp",            "/include/imucal/lcm_decode.hpp"};
   for (const char* msg : {"imu_sample_t", "imu_batch_t", "heading_sample_t", "calibration_t", "daemon_status_t",
                           "calibration_trigger_t", "session_progress_t"})
