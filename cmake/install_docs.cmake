@@ -7,7 +7,7 @@ string(TIMESTAMP changelog_date "%a, %d %b %Y %H:%M:%S +0000" UTC)
 file(WRITE ${PROJECT_BINARY_DIR}/packaging/changelog
 "imucal (${PROJECT_VERSION}) unstable; urgency=medium
 
-  * Built with CPack from the imucal source tree; see the project's history for changes.
+  * Built with CPack from the imucal source tree.
 
  -- ${IMUCAL_MAINTAINER}  ${changelog_date}
 ")

@@ -14,7 +14,12 @@ install(TARGETS imucal imucal-sim-pub imucal-trigger RUNTIME DESTINATION ${CMAKE
 # Debian's own /usr/bin/lcm-spy cannot start under Java 17 (see the script), hence a name of our own.
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/lcm-spy DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME imucal-lcm-spy
         COMPONENT tools)
-install(FILES ${IMUCAL_LCMTYPES_JAR} DESTINATION ${CMAKE_INSTALL_DATADIR}/java RENAME imucal-lcmtypes.jar
+# Debian's Java policy: the jar named with its version, and an unversioned link that users name.
+set(jar imucal-lcmtypes-${PROJECT_VERSION}.jar)
+file(MAKE_DIRECTORY ${PROJECT_BINARY_DIR}/packaging)
+file(CREATE_LINK ${jar} ${PROJECT_BINARY_DIR}/packaging/imucal-lcmtypes.jar SYMBOLIC)
+install(FILES ${IMUCAL_LCMTYPES_JAR} DESTINATION ${CMAKE_INSTALL_DATADIR}/java RENAME ${jar} COMPONENT tools)
+install(FILES ${PROJECT_BINARY_DIR}/packaging/imucal-lcmtypes.jar DESTINATION ${CMAKE_INSTALL_DATADIR}/java
         COMPONENT tools)
 
 include(${CMAKE_CURRENT_LIST_DIR}/install_dev.cmake)

@@ -3,7 +3,8 @@
 # them with apt into a clean Debian 12 root made by debootstrap, and checks there: the programs run, the
 # user and groups exist, the units pass systemd-analyze verify, a purge removes the state. Needs root
 # (debootstrap, chroot) and deb.debian.org. The root is cached (first run: a few minutes; after: a copy):
-#   IMUCAL_PACKAGE_CACHE (default ~/.cache/imucal/package-check), IMUCAL_DEB_BUILD_DIR (default build-deb/).
+#   IMUCAL_PACKAGE_CACHE (default ~/.cache/imucal/package-check), IMUCAL_DEB_BUILD_DIR (default build-deb/);
+#   IMUCAL_DEBS: a directory of .debs already built (skips the build).
 # Usage: scripts/package-check.sh
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -19,25 +20,28 @@ if ((${#need[@]} > 0)); then
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends debootstrap lintian dpkg-dev
 fi
 
-step "build and package ($build, prefix /usr, no tests)"
-# Debian's hardening flags (stack protector, fortify, relro), as a package build gets them from dpkg-buildflags.
-# Warnings stay warnings here: the development build (-Werror) is where they are fixed.
-CXXFLAGS="$(dpkg-buildflags --get CXXFLAGS) $(dpkg-buildflags --get CPPFLAGS)" \
-LDFLAGS="$(dpkg-buildflags --get LDFLAGS)" \
-  cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_INSTALL_PREFIX=/usr \
-  -DIMUCAL_BUILD_TESTS=OFF -DIMUCAL_BUILD_BENCHMARKS=OFF -DIMUCAL_WERROR=OFF >/dev/null
-cmake --build "$build" -j"$(nproc)"
-rm -rf "$build/debs"
-(cd "$build" && cpack -G DEB -B "$build/debs" >/dev/null)
-rm -rf "$build/debs/_CPack_Packages"
-debs=("$build"/debs/*.deb)
+if [ -z "${IMUCAL_DEBS:-}" ]; then
+  step "build and package ($build, prefix /usr, no tests)"
+  # Debian's hardening flags (stack protector, fortify, relro), as a package build gets them from dpkg-buildflags.
+  # Warnings stay warnings here: the development build (-Werror) is where they are fixed.
+  CXXFLAGS="$(dpkg-buildflags --get CXXFLAGS) $(dpkg-buildflags --get CPPFLAGS)" \
+  LDFLAGS="$(dpkg-buildflags --get LDFLAGS)" \
+    cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_INSTALL_PREFIX=/usr \
+    -DIMUCAL_BUILD_TESTS=OFF -DIMUCAL_BUILD_BENCHMARKS=OFF -DIMUCAL_WERROR=OFF >/dev/null
+  cmake --build "$build" -j"$(nproc)"
+  rm -rf "$build/debs"
+  (cd "$build" && cpack -G DEB -B "$build/debs" >/dev/null)
+  rm -rf "$build/debs/_CPack_Packages"
+  IMUCAL_DEBS="$build/debs"
+fi
+debs=("$IMUCAL_DEBS"/*.deb)
 for d in "${debs[@]}"; do
   echo "$(basename "$d"): $(dpkg-deb -f "$d" Depends)"
 done
 
 step "lintian"
 # Not fatal: what remains is listed in the README's Install section with why it stays.
-lintian --no-tag-display-limit "${debs[@]}" || true
+lintian --tag-display-limit 0 "${debs[@]}" || true
 
 step "Debian 12 root (cache: $cache)"
 base="$cache/bookworm-base"
