@@ -70,7 +70,8 @@ in_root() { chroot "$work" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin DE
 
 step "apt install of the three packages"
 in_root apt-get update -qq
-in_root apt-get install -y -q --no-install-recommends /tmp/debs/*.deb
+names=("${debs[@]##*/}")
+in_root apt-get install -y -q --no-install-recommends "${names[@]/#//tmp/debs/}"
 
 step "checks in the root"
 fail=0
