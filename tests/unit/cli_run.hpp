@@ -1,28 +1,11 @@
 #pragma once
 // Runs the real `imucal` binary with arguments and captures its exit status and output (stdout + stderr).
-#include <sys/wait.h>
-
-#include <array>
-#include <cstdio>
 #include <string>
+
+#include "command_run.hpp"
 
 namespace imucal::testing {
 
-struct CommandRun {
-  int status = 0;
-  std::string output;
-};
-
-inline CommandRun runImucal(const std::string& args) {
-  const std::string cmd = std::string(IMUCAL_CLI_PATH) + " " + args + " 2>&1";
-  CommandRun r;
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return {-1, "popen failed"};
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), pipe)) r.output += buf.data();
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+inline CommandRun runImucal(const std::string& args) { return runCommand(std::string(IMUCAL_CLI_PATH) + " " + args); }
 
 }  // namespace imucal::testing
