@@ -95,7 +95,7 @@ TEST(CliMagcal, TheDriverCorrectsTheRecordingToAConstantField) {
   EXPECT_EQ(cfg.heading.iron_fit_points, 800);
   EXPECT_EQ(j["points"].get<int>(), 800);
   EXPECT_TRUE(j["soft_iron_fitted"].get<bool>());
-  EXPECT_GT(j["coverage"]["smallest_eigenvalue"].get<double>(), 0.3);
+  EXPECT_GT(j["coverage"]["smallest_eigenvalue"].get<double>(), 0.28);  // 1/3 less the sampling spread
 }
 
 TEST(CliMagcal, GaussWithItsUnitGivesTheSameFitAndWithoutItIsRefused) {

@@ -149,7 +149,7 @@ TEST(IronFit, UndoesTheEmulatedBoardsIronInTheDriversConvention) {
   double sum2 = 0.0;
   for (const Vec3& m : raw) sum2 += std::pow(f.correction.correct(m).norm() - field, 2);
   EXPECT_NEAR(std::sqrt(sum2 / raw.size()), env.noise_ut, 0.05);
-  EXPECT_GT(f.coverage.smallest_eigenvalue, 0.3);
+  EXPECT_GT(f.coverage.smallest_eigenvalue, 0.28);  // 1/3 less the sampling spread of 600 directions
   EXPECT_GT(f.coverage.occupied_fraction, 0.8);
 }
 
@@ -172,7 +172,7 @@ TEST(IronFit, TwoPlanarTurnsGiveHardIronAndAScalarOnly) {
   const IronFit f = fitIron(pts);
   EXPECT_FALSE(f.soft_iron_fitted);
   EXPECT_NE(f.note.find("soft iron not determined"), std::string::npos) << f.note;
-  EXPECT_EQ(f.correction.soft_iron, Mat3::Identity());
+  EXPECT_LT((f.correction.soft_iron - Mat3::Identity()).norm(), 1e-12);
   for (int i = 0; i < 3; ++i) EXPECT_LT(std::abs(f.correction.offset(i) - kOffset(i)), 4.0 * f.offset_sigma(i)) << i;
   EXPECT_NEAR(f.field_ut, Vec3(20.0, 3.0, 43.5).norm(), 4.0 * f.field_sigma);
 }
