@@ -143,10 +143,13 @@ nlohmann::json toJson(const IronFit& f, const std::string& source, const IronFit
   j["residual_rms_ut"] = f.residual_rms_ut;
   j["noise_ut"] = f.noise_ut;
   j["iterations"] = f.iterations;
+  j["residual_correlation"] = f.residual_correlation;
   j["coverage"] = {{"smallest_eigenvalue", f.coverage.smallest_eigenvalue},
                    {"whole_sphere_eigenvalue", 1.0 / 3.0},
                    {"thinnest_direction", vec(f.coverage.thinnest)},
-                   {"occupied_cells", f.coverage.occupied_fraction}};
+                   {"occupied_cells", f.coverage.occupied_fraction},
+                   {"shape", f.shape_coverage},
+                   {"shape_to_noise", f.shape_to_noise}};
   nlohmann::json cov = nlohmann::json::array();
   for (int i = 0; i < 10; ++i) {
     nlohmann::json row = nlohmann::json::array();
