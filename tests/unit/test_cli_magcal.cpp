@@ -3,6 +3,7 @@
 // and bad input refused with exit status 2 naming the file.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -177,6 +178,13 @@ TEST(CliMagcal, AnLcmLogOfTheDriversMessagesGivesTheCsvsFit) {
   const HardSoftIron a = driverConfig(read(dir / "log.yaml")).heading.correction, b = driverConfig(read(dir / "csv.yaml")).heading.correction;
   EXPECT_LT((a.offset - b.offset).norm(), 1e-3);  // the CSV rounds to 10 digits
   EXPECT_LT((a.soft_iron - b.soft_iron).norm(), 1e-5);
+  // The same log as text: log2csv writes the new type's fields by their .lcm names.
+  const CommandRun csvs = runImucal("log2csv " + dir / "rot.lcm" + " --out-dir " + dir / "csv" + " --channel IMUCAL_MAG_FIELD");
+  ASSERT_EQ(csvs.status, 0) << csvs.output;
+  EXPECT_CONTAINS(csvs.output, "mag_field_t");
+  const std::string table = read(dir / "csv/IMUCAL_MAG_FIELD.csv");
+  EXPECT_EQ(table.substr(0, table.find('\n')), "utime,seq,device_time_us,field_ut_0,field_ut_1,field_ut_2,status,sensor_id");
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 302);  // the header, 300 samples, the saturated one
   // Another sensor on the channel: which one is not guessed.
   events.push_back({"IMUCAL_MAG_FIELD", imucal::testing::encoded(toMagMessage(StampedMag{}, "other"))});
   imucal::testing::writeLcmLog(dir / "two.lcm", events);
