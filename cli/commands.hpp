@@ -21,5 +21,6 @@ void addDiagnoseCommand(CLI::App& app);
 void addWatchCommand(CLI::App& app);
 void addEchoCommand(CLI::App& app);
 void addLog2CsvCommand(CLI::App& app);
+void addMagcalCommand(CLI::App& app);
 
 }  // namespace imucal::cli

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   imucal::cli::addWatchCommand(app);
   imucal::cli::addEchoCommand(app);
   imucal::cli::addLog2CsvCommand(app);
+  imucal::cli::addMagcalCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

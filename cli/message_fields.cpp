@@ -80,6 +80,17 @@ MessageRecord describe(const imucal::heading_sample_t& m) {
   return r;
 }
 
+MessageRecord describe(const imucal::mag_field_t& m) {
+  MessageRecord r{"mag_field_t", {}};
+  r.integer("utime", m.utime);
+  r.integer("seq", m.seq);
+  r.integer("device_time_us", m.device_time_us);
+  r.fixed("field_ut", m.field_ut);
+  r.integer("status", m.status);
+  r.text("sensor_id", m.sensor_id);
+  return r;
+}
+
 MessageRecord describe(const imucal::calibration_t& m) {
   MessageRecord r{"calibration_t", {}};
   r.integer("utime", m.utime);

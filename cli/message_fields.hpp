@@ -48,6 +48,7 @@ struct MessageRecord {
 MessageRecord describe(const imucal::imu_sample_t& m);
 MessageRecord describe(const imucal::imu_batch_t& m);
 MessageRecord describe(const imucal::heading_sample_t& m);
+MessageRecord describe(const imucal::mag_field_t& m);
 MessageRecord describe(const imucal::calibration_t& m);
 MessageRecord describe(const imucal::daemon_status_t& m);
 MessageRecord describe(const imucal::session_progress_t& m);

@@ -25,9 +25,10 @@ KnownType known() {
           }};
 }
 
-const std::array<KnownType, 7>& knownTypes() {
-  static const std::array<KnownType, 7> types{
+const std::array<KnownType, 8>& knownTypes() {
+  static const std::array<KnownType, 8> types{
       known<imucal::imu_sample_t>(),    known<imucal::imu_batch_t>(),     known<imucal::heading_sample_t>(),
+      known<imucal::mag_field_t>(),
       known<imucal::calibration_t>(),   known<imucal::daemon_status_t>(), known<imucal::session_progress_t>(),
       known<imucal::calibration_trigger_t>()};
   return types;

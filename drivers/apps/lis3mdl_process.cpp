@@ -27,12 +27,20 @@ int runLis3mdl(const DriverOptions& o, const Lis3mdlDeviceOpener& open) {
   spdlog::info("{}: LIS3MDL ready: +-{} gauss, {} Hz, {}; tilt from {} ({}); publishing on {}", deviceName(device->bus(), cfg.chip.address),
                cfg.chip.full_scale_gauss, cfg.chip.odr_hz, device->sampling(), cfg.imu_channel,
                tilt.sensorId().empty() ? std::string("any sensor") : tilt.sensorId(), cfg.process.channel);
+  if (!cfg.field_channel.empty()) spdlog::info("raw field as {} on {}", cfg.process.sensor_id, cfg.field_channel);
 
   Counters heading_counters({"headings", "no_tilt"});
   std::uint64_t published = 0;
+  std::int64_t field_seq = 0;
   device->wire(loop, [&](std::optional<std::int64_t> edge) {
     const auto r = driver.read(edge);
     if (!r || !loop.running()) return;
+    // The raw field goes out whether or not a tilt is known: `imucal magcal` needs only the field.
+    if (!cfg.field_channel.empty()) {
+      const imucal::mag_field_t f = toMagField(*r, field_seq++, cfg.process.sensor_id);
+      lcm.publish(cfg.field_channel, &f);
+      if (o.print) printSample(f);
+    }
     const auto t = tilt.tracker().at(r->utime);
     if (!t) {
       heading_counters.increment("no_tilt");

@@ -53,6 +53,21 @@ imucal::imu_batch_t toImuBatchMessage(const std::vector<ImuReading>& readings, s
   return toImuBatch(samples, sensor_id);
 }
 
+imucal::mag_field_t toMagField(const MagReading& r, std::int64_t seq, const std::string& sensor_id) {
+  StampedMag s;
+  s.utime = r.utime;
+  s.seq = seq;
+  s.field_ut = r.field;
+  s.status = r.saturated ? std::int32_t{imucal::mag_field_t::STATUS_SATURATED} : std::int32_t{imucal::mag_field_t::STATUS_OK};
+  return toMagMessage(s, sensor_id);
+}
+
+void printSample(const imucal::mag_field_t& m) {
+  std::printf("mag,%lld,%lld,%.9g,%.9g,%.9g,%d,%s\n", static_cast<long long>(m.utime), static_cast<long long>(m.seq), m.field_ut[0],
+              m.field_ut[1], m.field_ut[2], m.status, m.sensor_id.c_str());
+  std::fflush(stdout);
+}
+
 void printSample(const imucal::imu_sample_t& m) {
   std::printf("imu,%lld,%lld,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6g,%d,%s\n", static_cast<long long>(m.utime), static_cast<long long>(m.seq),
               m.accel[0], m.accel[1], m.accel[2], m.gyro[0], m.gyro[1], m.gyro[2], m.temperature_c, m.status, m.sensor_id.c_str());

@@ -10,6 +10,7 @@
 #include "imucal/drivers/counters.hpp"
 #include "imucal/drivers/event_loop.hpp"
 #include "imucal/drivers/imu_reading.hpp"
+#include "imucal/drivers/lis3mdl_driver.hpp"
 #include "imucal/lcmtypes.hpp"
 
 namespace imucal::drivers::node {
@@ -31,12 +32,16 @@ imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const st
 // One FIFO read (1 .. imu_batch_t::MAX_COUNT readings, times increasing) as one imu_batch_t: per-sample
 // stamps, sequence numbers first_seq, first_seq + 1, ...
 imucal::imu_batch_t toImuBatchMessage(const std::vector<ImuReading>& readings, std::int64_t first_seq, const std::string& sensor_id);
+// The raw field of a magnetometer read (no iron correction), saturation as STATUS_SATURATED.
+imucal::mag_field_t toMagField(const MagReading& r, std::int64_t seq, const std::string& sensor_id);
 
 // One CSV line per published message on stdout, for checks without an LCM subscriber (e.g. inside a VM):
 //   imu,utime,seq,ax,ay,az,gx,gy,gz,temperature_c,status,sensor_id     (SI, FRD)
 //   heading,utime,heading_rad,sigma_rad
+//   mag,utime,seq,field_x_ut,field_y_ut,field_z_ut,status,sensor_id     (FRD, uncorrected)
 void printSample(const imucal::imu_sample_t& m);
 void printSample(const imucal::heading_sample_t& m);
+void printSample(const imucal::mag_field_t& m);
 // A batch as the imu lines of its samples (what a subscriber gets after expanding it).
 void printSample(const imucal::imu_batch_t& m);
 

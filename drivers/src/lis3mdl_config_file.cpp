@@ -64,6 +64,7 @@ Lis3mdlFileConfig fromYaml(const YAML::Node& root, const std::string& file) {
   headingSection(s.section("heading"), c);
   emulationSection(s.section("emulation"), c.emulation);
   c.process = processFields(s, "lis3mdl@" + c.bus + ":" + hexByte(c.chip.address), "IMUCAL_HEADING");
+  c.field_channel = s.text("field_channel", c.field_channel);
   s.finish();
   return c;
 }

@@ -27,6 +27,32 @@ HeadingSample toCore(const heading_sample_t& message, std::int64_t origin_utime)
   return HeadingSample{secondsSince(message.utime, origin_utime), message.heading};
 }
 
+MagSample toCore(const mag_field_t& message, std::int64_t origin_utime) {
+  const StampedMag s = fromMagMessage(message);
+  return MagSample{secondsSince(s.utime, origin_utime), s.field_ut};
+}
+
+StampedMag fromMagMessage(const mag_field_t& m) {
+  StampedMag s;
+  s.utime = m.utime;
+  s.seq = m.seq;
+  s.device_time_us = m.device_time_us;
+  s.field_ut = Vec3(m.field_ut[0], m.field_ut[1], m.field_ut[2]);
+  s.status = m.status;
+  return s;
+}
+
+mag_field_t toMagMessage(const StampedMag& sample, const std::string& sensor_id) {
+  mag_field_t m{};
+  m.utime = sample.utime;
+  m.seq = sample.seq;
+  m.device_time_us = sample.device_time_us;
+  for (int i = 0; i < 3; ++i) m.field_ut[i] = sample.field_ut(i);
+  m.status = sample.status;
+  m.sensor_id = sensor_id;
+  return m;
+}
+
 imu_sample_t toImuMessage(const StampedImu& sample, const std::string& sensor_id) {
   imu_sample_t m{};
   m.utime = sample.utime;

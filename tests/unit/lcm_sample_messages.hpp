@@ -87,6 +87,18 @@ inline imucal::heading_sample_t sampleHeading() {
   return m;
 }
 
+inline imucal::mag_field_t sampleMagField() {
+  imucal::mag_field_t m{};
+  m.utime = 1'700'000'000'350'000;
+  m.seq = 41;
+  m.device_time_us = 0;
+  const double field[3] = {21.5, -0.1, 43.219999999999999};
+  for (int i = 0; i < 3; ++i) m.field_ut[i] = field[i];
+  m.status = 1;
+  m.sensor_id = "lis3mdl@/dev/i2c-1:0x1C";
+  return m;
+}
+
 inline imucal::calibration_t sampleCalibration() {
   imucal::calibration_t m{};
   m.utime = 1'700'000'001'000'000;

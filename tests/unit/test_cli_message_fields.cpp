@@ -68,6 +68,7 @@ TEST(CliMessageFields, EveryTypeListsTheFieldsOfItsLcmFile) {
   expectAsDeclared(describe(sampleImu()));
   expectAsDeclared(describe(sampleStampedBatch()));
   expectAsDeclared(describe(sampleHeading()));
+  expectAsDeclared(describe(sampleMagField()));
   expectAsDeclared(describe(sampleCalibration()));
   expectAsDeclared(describe(sampleStatus()));
   expectAsDeclared(describe(sampleProgress()));
@@ -106,6 +107,7 @@ TEST(CliMessageTypes, EachTypeIsKnownByItsFingerprint) {
   expectIdentified(sampleImu());
   expectIdentified(sampleEvenBatch());
   expectIdentified(sampleHeading());
+  expectIdentified(sampleMagField());
   expectIdentified(sampleCalibration());
   expectIdentified(sampleStatus());
   expectIdentified(sampleProgress());

@@ -45,6 +45,12 @@ TEST(CliMessageText, ImuSampleAndBatches) {
             R"(gyro_z=[3.14159,-3.14159] status=[8,2147483647] temperature_c=nan sensor_id="imu1")");
 }
 
+TEST(CliMessageText, MagField) {
+  EXPECT_EQ(text("IMUCAL_MAG_FIELD", sampleMagField()),
+            R"(IMUCAL_MAG_FIELD mag_field_t utime=1700000000350000 seq=41 device_time_us=0 field_ut=[21.5,-0.1,43.22] )"
+            R"(status=1 sensor_id="lis3mdl@/dev/i2c-1:0x1C")");
+}
+
 TEST(CliMessageText, HeadingTriggerAndProgress) {
   EXPECT_EQ(text("IMUCAL_HEADING", sampleHeading()),
             "IMUCAL_HEADING heading_sample_t utime=1700000000400000 heading=-3.141592653589793 "

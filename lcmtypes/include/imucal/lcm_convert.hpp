@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "imucal/core/magnetometer.hpp"
 #include "imucal/core/types.hpp"
 #include "imucal/lcmtypes.hpp"
 
@@ -24,6 +25,15 @@ struct StampedImu {
   std::int32_t status = 0;          // imu_sample_t::STATUS_* bits
 };
 
+// One raw magnetometer sample as it travels (mag_field_t): uT, body FRD, no iron correction.
+struct StampedMag {
+  std::int64_t utime = 0;           // us since the Unix epoch
+  std::int64_t seq = -1;            // driver sequence number, -1 if the source has none
+  std::int64_t device_time_us = 0;  // the sensor's own time, 0 if unknown
+  Vec3 field_ut = Vec3::Zero();
+  std::int32_t status = 0;          // mag_field_t::STATUS_* bits
+};
+
 // IMU samples of one sensor from one message of either type.
 struct ImuMessage {
   std::string sensor_id;
@@ -37,6 +47,9 @@ std::int64_t utimeAfter(double seconds, std::int64_t origin_utime = 0);
 
 ImuSample toCore(const StampedImu& sample, std::int64_t origin_utime = 0);
 HeadingSample toCore(const heading_sample_t& message, std::int64_t origin_utime = 0);
+MagSample toCore(const mag_field_t& message, std::int64_t origin_utime = 0);
+StampedMag fromMagMessage(const mag_field_t& message);
+mag_field_t toMagMessage(const StampedMag& sample, const std::string& sensor_id);
 
 imu_sample_t toImuMessage(const StampedImu& sample, const std::string& sensor_id);
 // samples: consecutive (each seq one more than the last, or all -1), at most imu_batch_t::MAX_COUNT.

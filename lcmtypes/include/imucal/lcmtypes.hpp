@@ -16,6 +16,7 @@
 #include "imucal/heading_sample_t.hpp"   // IWYU pragma: export
 #include "imucal/imu_batch_t.hpp"        // IWYU pragma: export
 #include "imucal/imu_sample_t.hpp"       // IWYU pragma: export
+#include "imucal/mag_field_t.hpp"        // IWYU pragma: export
 #include "imucal/session_progress_t.hpp" // IWYU pragma: export
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop

@@ -21,6 +21,7 @@ struct Lis3mdlFileConfig {
   double max_tilt_age_s = 0.5;
   std::string imu_channel = "IMUCAL_IMU";
   std::string imu_sensor_id;                 // tilt only from this sensor (empty: any)
+  std::string field_channel = "IMUCAL_MAG_FIELD";  // raw mag_field_t, for `imucal magcal` (empty: not published)
   emulation::MagneticEnvironment emulation;  // imucal-lis3mdl-emulated only
   ProcessConfig process;
 };
