@@ -112,10 +112,10 @@ std::string calibrationPlotSvg(const CalibrationResult& result, const std::map<s
   std::ostringstream head;
   head << "<text x=\"10\" y=\"20\" font-size=\"14\">imucal calibrate: estimates over time ("
        << result.passes_run << " passes; the last shown)</text>\n"
-       << svgLegendEntry(10, 44, "estimate", kEstimateColor, false, false)
-       << svgLegendEntry(110, 44, "+- 1-sigma", kEstimateColor + std::string("55"), false, true)
-       << svgLegendEntry(220, 44, "truth", kTruthColor, true, false)
-       << svgLegendEntry(300, 44, "moving (static detector)", kTurnColor, false, true);
+       << svgLegendEntry(10, 44, "estimate", kEstimateColor, LegendMark::Line)
+       << svgLegendEntry(110, 44, "+- 1-sigma", kEstimateColor + std::string("55"), LegendMark::Box)
+       << svgLegendEntry(220, 44, "truth", kTruthColor, LegendMark::Dashed)
+       << svgLegendEntry(300, 44, "moving (static detector)", kTurnColor, LegendMark::Box);
   return svgDocument(width, y + 10, head.str() + body.str());
 }
 

@@ -10,7 +10,7 @@ namespace imucal::io {
 
 namespace {
 
-constexpr double kWidth = 720, kHeight = 360, kLeft = 70, kRight = 170, kTop = 30, kBottom = 50;
+constexpr double kWidth = 780, kHeight = 360, kLeft = 70, kRight = 230, kTop = 30, kBottom = 50;
 
 struct Axis {
   double lo = 0.0, hi = 1.0;  // log10 of the value on a log axis
@@ -58,13 +58,13 @@ Axis makeAxis(const PlotSpec& spec, bool x) {
   return a;
 }
 
-// 1, 2 or 5 times a power of ten near range / 4: four or five ticks at values a reader can use.
-double niceStep(double range) {
-  const double raw = range / 4.0;
-  const double p = std::pow(10.0, std::floor(std::log10(raw)));
-  for (double m : {1.0, 2.0, 5.0})
-    if (m * p >= raw) return m * p;
-  return 10.0 * p;
+// The largest step of 1, 2 or 5 times a power of ten that puts at least three ticks inside [lo, hi]:
+// values a reader can use, and enough of them to read a value between.
+double niceStep(double lo, double hi) {
+  const double p = std::pow(10.0, std::floor(std::log10(hi - lo)));
+  for (double step : {5.0 * p, 2.0 * p, p, 0.5 * p, 0.2 * p})
+    if (std::floor(hi / step) - std::ceil(lo / step) >= 2.0) return step;
+  return 0.1 * p;
 }
 
 // Tick values (not log10 of them) inside the axis.
@@ -76,7 +76,7 @@ std::vector<double> tickValues(const Axis& a) {
     for (int k = 0; k <= decades; k += every) out.push_back(std::pow(10.0, a.lo + k));
     return out;
   }
-  const double step = niceStep(a.hi - a.lo);
+  const double step = niceStep(a.lo, a.hi);
   for (double k = std::ceil(a.lo / step); k * step <= a.hi + 1e-9 * step; k += 1.0) {
     const double v = k * step;
     out.push_back(std::abs(v) < 1e-9 * step ? 0.0 : v);
@@ -193,15 +193,16 @@ std::string svgDocument(double width, double height, const std::string& body) {
   return o.str();
 }
 
-std::string svgLegendEntry(double x, double y, const std::string& label, const std::string& color, bool dashed,
-                           bool filled) {
+std::string svgLegendEntry(double x, double y, const std::string& label, const std::string& color, LegendMark mark) {
   std::ostringstream o;
   o << std::setprecision(7);
-  if (filled)
+  if (mark == LegendMark::Box)
     o << "<rect x=\"" << x << "\" y=\"" << y - 9 << "\" width=\"20\" height=\"10\" fill=\"" << color << "\"/>\n";
+  else if (mark == LegendMark::Dot)
+    o << "<circle cx=\"" << x + 10 << "\" cy=\"" << y - 4 << "\" r=\"2.5\" fill=\"" << color << "\"/>\n";
   else
     o << "<line x1=\"" << x << "\" y1=\"" << y - 4 << "\" x2=\"" << x + 20 << "\" y2=\"" << y - 4 << "\" stroke=\"" << color
-      << "\" stroke-width=\"1.5\"" << (dashed ? " stroke-dasharray=\"5,3\"" : "") << "/>\n";
+      << "\" stroke-width=\"1.5\"" << (mark == LegendMark::Dashed ? " stroke-dasharray=\"5,3\"" : "") << "/>\n";
   o << "<text x=\"" << x + 24 << "\" y=\"" << y << "\">" << svgEscape(label) << "</text>\n";
   return o.str();
 }
@@ -215,7 +216,8 @@ std::string svgPlot(const PlotSpec& spec) {
   body << svgPanel(inner, {kLeft, kTop, kWidth - kLeft - kRight, kHeight - kTop - kBottom}, "plot");
   double y = kTop + 14;
   for (const auto& s : spec.series) {
-    body << svgLegendEntry(kWidth - kRight + 10, y, s.label, s.color, s.dashed, false);
+    body << svgLegendEntry(kWidth - kRight + 10, y, s.label, s.color,
+                           s.markers ? LegendMark::Dot : s.dashed ? LegendMark::Dashed : LegendMark::Line);
     y += 16;
   }
   return svgDocument(kWidth, kHeight, body.str());

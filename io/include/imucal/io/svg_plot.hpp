@@ -51,9 +51,10 @@ std::string svgPanel(const PlotSpec& spec, const PlotArea& area, const std::stri
 // A document of the given size around body (panels, headings).
 std::string svgDocument(double width, double height, const std::string& body);
 
-// A legend entry: a short line (or a filled box for a band or a span) and its text, at (x, y).
-std::string svgLegendEntry(double x, double y, const std::string& label, const std::string& color, bool dashed,
-                           bool filled);
+// A legend entry: a short line, a dashed one, a filled box (a band, a span) or a dot (markers), and its
+// text, at (x, y).
+enum class LegendMark { Line, Dashed, Box, Dot };
+std::string svgLegendEntry(double x, double y, const std::string& label, const std::string& color, LegendMark mark);
 
 // Text with <, > and & escaped, for element content and attribute values.
 std::string svgEscape(const std::string& s);
