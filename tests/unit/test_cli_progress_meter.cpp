@@ -7,11 +7,15 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "progress_meter.hpp"
+#include "scratch_dir.hpp"
 
 namespace imucal::cli {
 namespace {
@@ -98,6 +102,27 @@ TEST(ProgressMeter, BarOnATerminal) {
   EXPECT_NE(out.find("\rdiagnose [" + std::string(30, '#') + "] 100 %"), std::string::npos) << out;
   EXPECT_EQ(out.find("diagnose: "), std::string::npos) << "plain lines on a terminal: " << out;
   EXPECT_EQ(out.find("50 %", out.find("50 %") + 1), std::string::npos) << "redrawn without a change: " << out;
+}
+
+std::string fileText(const std::string& path) {
+  std::stringstream s;
+  s << std::ifstream(path).rdbuf();
+  return s.str();
+}
+
+// The real command with stderr to a file: four runs on one thread finish at 25, 50, 75 and 100 %, so the
+// lines say 20, 50, 70 and 100 %; stdout carries the report alone.
+TEST(ProgressMeter, MonteCarloReportsOnStderrOnly) {
+  imucal::testing::ScratchDir scratch;
+  const std::string out = (scratch.path() / "out.txt").string(), err = (scratch.path() / "err.txt").string();
+  const std::string configs = std::string(IMUCAL_CONFIG_DIR) + "/";
+  const std::string cmd = std::string(IMUCAL_CLI_PATH) + " montecarlo --sim-config " + configs + "paper-sim.yaml --config " +
+                          configs + "paper-calibrate.yaml --runs 4 --threads 1 > " + out + " 2> " + err;
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << fileText(err);
+  EXPECT_EQ(fileText(err), tenPercentLines("montecarlo", {20, 50, 70, 100}));
+  const std::string report = fileText(out);
+  EXPECT_EQ(report.rfind("### ", 0), 0u) << report;
+  EXPECT_EQ(report.find("montecarlo: "), std::string::npos) << report;
 }
 
 }  // namespace
