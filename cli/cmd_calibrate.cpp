@@ -6,6 +6,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -17,6 +18,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/atomic_file.hpp"
+#include "imucal/io/calibration_plot.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/intrinsics_output.hpp"
 #include "imucal/io/json_output.hpp"
@@ -34,6 +36,7 @@ struct CalibrateArgs {
   std::string truth;
   std::string intrinsics;
   std::string kalibr;
+  std::string plot;
 };
 
 // Truth values (SI) by parameter name from a truth.json written by `imucal simulate`.
@@ -45,6 +48,14 @@ nlohmann::json loadTruth(const std::string& path) {
   } catch (const nlohmann::json::parse_error& e) {
     throw io::InputError(path + ": not valid JSON: " + e.what());
   }
+}
+
+std::map<std::string, double> truthValues(const nlohmann::json& truth) {
+  std::map<std::string, double> out;
+  if (!truth.contains("parameters")) return out;
+  for (const auto& [name, p] : truth["parameters"].items())
+    if (p.contains("value_si")) out[name] = p["value_si"].get<double>();
+  return out;
 }
 
 std::string fixed1(double v) {
@@ -160,6 +171,10 @@ void runCalibrateCommand(const CalibrateArgs& args) {
 
   nlohmann::json truth;
   if (!args.truth.empty()) truth = loadTruth(args.truth);
+  if (!args.plot.empty()) {
+    io::writeFileAtomically(args.plot, io::calibrationPlotSvg(result, truthValues(truth)));
+    std::cout << "wrote " << args.plot << '\n';
+  }
   printSummary(result, args.truth.empty() ? nullptr : &truth);
   std::cout << "wrote " << args.out << (args.history.empty() ? "" : " and " + args.history) << '\n';
   if (!problems.empty())
@@ -179,7 +194,9 @@ void addCalibrateCommand(CLI::App& app) {
   cmd->add_option("--intrinsics", args->intrinsics,
                   "Also write the standard intrinsics (sensor matrices, Kalibr and imu_tk forms, sigmas, correlations) as JSON");
   cmd->add_option("--kalibr", args->kalibr, "Also write the intrinsics as a Kalibr IMU YAML (scale-misalignment model)");
-  cmd->add_option("--truth", args->truth, "truth.json from `imucal simulate`: print the error of each estimate")->check(CLI::ExistingFile);
+  cmd->add_option("--plot", args->plot,
+                  "Also write an SVG of every estimated parameter's estimate +- 1-sigma over time, moves shaded");
+  cmd->add_option("--truth", args->truth, "truth.json from `imucal simulate`: print the error of each estimate (and draw the truth in --plot)")->check(CLI::ExistingFile);
   cmd->callback([args]() { runCalibrateCommand(*args); });
 }
 

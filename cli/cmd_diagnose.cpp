@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "progress_meter.hpp"
 #include "recording_input.hpp"
 #include "imucal/core/diagnose.hpp"
 #include "imucal/io/atomic_file.hpp"
@@ -56,13 +57,15 @@ void runDiagnoseCommand(const DiagnoseArgs& args) {
         ": the diagnosis runs the filter some hundred times over the whole recording and keeps every "
         "innovation; diagnose an excerpt (a turn with its stills, or the longest still stretch)");
   DiagnoseOptions options;
-  options.progress = [](int round, const std::string& effect) {
-    std::cerr << "diagnose: round " << round << ": testing " << effect << '\n';
+  ProgressMeter meter(stderr, "diagnose");
+  options.progress = [&meter](int round, const std::string& effect, double fraction) {
+    meter.update(fraction, "round " + std::to_string(round) + ": " + effect);
   };
   options.max_steps = args.max_steps;
   options.family_alpha = args.alpha;
   options.allan_min_still = args.allan_min_still;
   const Diagnosis d = diagnose(recording.imu, recording.heading, SensorHypothesis::fromFilter(config.filter), options);
+  meter.finish();
 
   // Plots go beside the report: <report stem>_plots/NAME.svg.
   const std::filesystem::path md_path(args.out_md);

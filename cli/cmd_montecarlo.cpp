@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "commands.hpp"
+#include "progress_meter.hpp"
 #include "imucal/io/atomic_file.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/sim/montecarlo.hpp"
@@ -43,6 +44,12 @@ void writeOutputs(const MonteCarloArgs& args, const std::string& md, const nlohm
   }
 }
 
+std::function<void(std::size_t, std::size_t)> progressTo(ProgressMeter& meter) {
+  return [&meter](std::size_t done, std::size_t total) {
+    meter.update(static_cast<double>(done) / static_cast<double>(total), std::to_string(done) + " of " + std::to_string(total) + " runs");
+  };
+}
+
 // Any simulated motion through the calibration a user would run on it (--config), against its bound.
 void runMotionStudyCommand(const MonteCarloArgs& args) {
   const sim::SimConfig sim = io::loadSimConfig(args.sim_config);
@@ -52,7 +59,10 @@ void runMotionStudyCommand(const MonteCarloArgs& args) {
   options.threads = args.threads;
   options.filter = userFilter(args.config);
   options.bound_filter = filterMatchingSimulation(sim, options.filter);
+  ProgressMeter meter(stderr, "montecarlo");
+  options.progress = progressTo(meter);
   const sim::MotionStudyReport report = sim::runMotionStudy(sim, options);
+  meter.finish();
   writeOutputs(args, motionStudyMarkdown(report, args.sim_config), motionStudyJson(report));
 }
 
@@ -68,7 +78,10 @@ void runMonteCarloCommand(const MonteCarloArgs& args) {
   options.threads = args.threads;
   options.compare_plain = !args.no_plain;
   if (!args.config.empty()) options.filter = io::loadCalibrateConfig(args.config).filter;
+  ProgressMeter meter(stderr, "montecarlo");
+  options.progress = progressTo(meter);
   const sim::MonteCarloReport report = sim::runMonteCarlo(options);
+  meter.finish();
   writeOutputs(args, monteCarloMarkdown(report), monteCarloJson(report));
 }
 

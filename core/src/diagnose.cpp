@@ -226,7 +226,10 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   for (int step = 0; step <= options.max_steps; ++step) {
     const double l0 = gap.log_likelihood;
     std::vector<Candidate> candidates;
+    std::size_t index = 0;
     for (const Effect& e : library) {
+      const double fraction = (step + static_cast<double>(index++) / static_cast<double>(library.size())) /
+                              static_cast<double>(options.max_steps + 1);
       // Not evaluated again: refused earlier, unobservable on this motion, or a state of the filter.
       const auto settled = [&](EffectTest test) {
         Candidate c;
@@ -250,7 +253,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
         settled(t);
         continue;
       }
-      if (options.progress) options.progress(step + 1, e.id);
+      if (options.progress) options.progress(step + 1, e.id, fraction);
       candidates.push_back(e.kind == EffectKind::Deterministic ? testDeterministic(e, model, l0, eval)
                                                                : testProcessNoise(e, model, l0, eval));
     }

@@ -52,6 +52,31 @@ void gapTable(std::ostringstream& md, const ModelGap& before, const ModelGap& af
   }
 }
 
+// In the report's units: the deviation as a bias instability (deg/h, ug), the white-noise line labelled
+// with its density (deg/sqrt(h), m/s/sqrt(h); for the gyro the line's value in deg/h at tau = 1 h).
+PlotSpec allanPlot(const AllanCurve& c) {
+  const std::string sensor = c.channel.rfind("gyro", 0) == 0 ? "gyro" : "accel";
+  const ParamUnit adev = effectUnit(sensor + "_bias_instability"), white = effectUnit(sensor + "_white_noise");
+  PlotSpec p;
+  p.title = "Allan deviation " + c.channel + ": data and model";
+  p.x_label = "tau (s)";
+  p.y_label = "Allan deviation (" + adev.human + ")";
+  p.log_x = p.log_y = true;
+  PlotSeries data{"data", {}, {}, "#000000", false, true, {}}, before{"starting model", {}, {}, "#d62728", true, false, {}},
+      after{"diagnosed model", {}, {}, "#1f77b4", false, false, {}},
+      noise{"white noise " + fmt(c.fit.value.white / white.factor) + " " + white.human, {}, {}, "#2ca02c", true, false, {}};
+  for (const auto& pt : c.data) {
+    data.x.push_back(pt.tau);
+    data.y.push_back(pt.adev / adev.factor);
+    for (PlotSeries* s : {&before, &after, &noise}) s->x.push_back(pt.tau);
+    before.y.push_back(allanModel(c.model_before, pt.tau) / adev.factor);
+    after.y.push_back(allanModel(c.model_after, pt.tau) / adev.factor);
+    noise.y.push_back(c.fit.value.white / std::sqrt(pt.tau) / adev.factor);
+  }
+  p.series = {data, before, after, noise};
+  return p;
+}
+
 }  // namespace
 
 std::vector<NamedPlot> diagnosisPlots(const Diagnosis& d) {
@@ -64,31 +89,17 @@ std::vector<NamedPlot> diagnosisPlots(const Diagnosis& d) {
                 (std::string(ch) == "heading_block" ? " innovations (0.5 s means)" : " residual (measured - re-simulated, 0.5 s means)") +
                 ", before and after";
       p.x_label = "t (s)";
-      p.y_label = "units of the model's sigma";
+      p.y_label = "residual (model's 1-sigma)";
+      p.zero_line = true;
       const ResidualSeries* b = seriesOf(d.initial_gap, ch);
       const ResidualSeries* a = seriesOf(d.final_gap, ch);
-      if (b != nullptr) p.series.push_back({"starting model", b->t, b->value, colors[1], false, false});
-      if (a != nullptr) p.series.push_back({"diagnosed model", a->t, a->value, colors[0], false, false});
+      if (b != nullptr) p.series.push_back({"starting model", b->t, b->value, colors[1], false, false, {}});
+      if (a != nullptr) p.series.push_back({"diagnosed model", a->t, a->value, colors[0], false, false, {}});
       plots.push_back({std::string("residuals_") + ch, p.title, svgPlot(p)});
     }
   }
   for (const auto& c : d.allan) {
-    PlotSpec p;
-    p.title = "Allan deviation " + c.channel + ": data and model";
-    p.x_label = "tau (s)";
-    p.y_label = c.channel.rfind("gyro", 0) == 0 ? "rad/s" : "m/s^2";
-    p.log_x = p.log_y = true;
-    PlotSeries data{"data", {}, {}, "#000000", false, true}, before{"starting model", {}, {}, colors[1], true, false},
-        after{"diagnosed model", {}, {}, colors[0], false, false};
-    for (const auto& pt : c.data) {
-      data.x.push_back(pt.tau);
-      data.y.push_back(pt.adev);
-      before.x.push_back(pt.tau);
-      before.y.push_back(allanModel(c.model_before, pt.tau));
-      after.x.push_back(pt.tau);
-      after.y.push_back(allanModel(c.model_after, pt.tau));
-    }
-    p.series = {data, before, after};
+    const PlotSpec p = allanPlot(c);
     plots.push_back({"allan_" + c.channel, p.title, svgPlot(p)});
   }
   return plots;

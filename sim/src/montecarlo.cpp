@@ -159,7 +159,7 @@ MonteCarloReport runMonteCarlo(const MonteCarloOptions& options) {
 
   // One job per (heading case, run): simulate once, calibrate with every setting of that case.
   const std::size_t jobs = options.cases.size() * runs;
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> next{0}, done{0};
   const auto worker = [&]() {
     for (std::size_t job = next++; job < jobs; job = next++) {
       const std::size_t c = job / runs, run = job % runs;
@@ -175,6 +175,7 @@ MonteCarloReport runMonteCarlo(const MonteCarloOptions& options) {
         const VecX truth = toParamVector(r.layout, applied);
         records[i][run] = recordRun(r, truth);
       }
+      if (options.progress) options.progress(++done, jobs);
     }
   };
   unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads) : std::max(1u, std::thread::hardware_concurrency());

@@ -26,7 +26,7 @@ MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions&
   const auto runs = static_cast<std::size_t>(options.runs);
   std::vector<RunOutcome> outcomes(runs);
   std::vector<std::string> names;
-  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> next{0}, done{0};
   const auto worker = [&]() {
     for (std::size_t run = next++; run < runs; run = next++) {
       const std::uint64_t seed = options.first_seed + run;
@@ -36,6 +36,7 @@ MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions&
       const CalibrationParams applied{out.applied_errors, sim.earth.gravity() - options.filter.earth.gravity()};
       outcomes[run] = {r.estimate - toParamVector(r.layout, applied), r.sigma, r.converged};
       if (run == 0) names = r.names;
+      if (options.progress) options.progress(++done, runs);
     }
   };
   const unsigned threads = options.threads > 0 ? static_cast<unsigned>(options.threads)

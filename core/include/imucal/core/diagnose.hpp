@@ -22,7 +22,9 @@ struct DiagnoseOptions {
   // Correlation above which two effects are reported as indistinguishable on this motion.
   double indistinguishable_correlation = 0.95;
   // Told before each candidate effect is tested (round, effect id): a diagnosis runs the filter many times.
-  std::function<void(int round, const std::string& effect)> progress;
+  // fraction: of the work if every round ran, so an upper bound on what is left (it jumps to the end when
+  // a round finds nothing).
+  std::function<void(int round, const std::string& effect, double fraction)> progress;
 };
 
 // Implausible: significant, but the fitted size is beyond what the effect can physically have (more than

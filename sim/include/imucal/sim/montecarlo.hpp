@@ -2,6 +2,7 @@
 // The seed paper's simulation study: many seeded runs of the reference motion for several heading noise
 // levels and filter R settings, with error statistics against the truth and the information bound.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,8 @@ struct MonteCarloOptions {
     return f;
   }();
   bool compare_plain = true;       // also run a single-pass, first-order-reset filter at R = true noise
+  // Told after each finished run (from the worker threads, in any order): a study runs for minutes.
+  std::function<void(std::size_t done, std::size_t total)> progress;
 };
 
 // Statistics of one parameter in one cell (heading case x R setting x method).

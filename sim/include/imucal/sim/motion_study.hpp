@@ -3,6 +3,7 @@
 // the information bound, the error RMS against the truth, the sigma the filter reported, the RMS of
 // error / sigma (1 when the sigmas are honest) and how often it was called converged.
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@ struct MotionStudyOptions {
   int threads = 0;           // 0 = all cores
   FilterConfig filter;       // what calibrate runs with (noise measured on the stills unless pinned)
   FilterConfig bound_filter; // the same model told the simulation's true noise: for the bound
+  // Told after each finished run (from the worker threads, in any order): a study runs for minutes.
+  std::function<void(std::size_t done, std::size_t total)> progress;
 };
 
 struct MotionStudyParam {
