@@ -9,8 +9,9 @@ packages=(
   # LCM: C/C++ library (lcm.pc needs glib), lcm-gen, lcm.jar + lcm-spy, a JDK for the types jar,
   # and jchart2d, which lcm-spy's charts need but liblcm-java does not pull in (see scripts/lcm-spy).
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java
-  # sd_notify readiness and watchdog for imucald under systemd.
-  libsystemd-dev
+  # sd_notify readiness and watchdog for imucald under systemd; systemd-analyze verifies the installed units
+  # (tests/install), which without it would be skipped.
+  libsystemd-dev systemd
   # The real-kernel test (tests/vm): qemu boots Debian's kernel with a busybox-static initramfs.
   qemu-system-x86 busybox-static cpio xz-utils
   # The lcm-spy check: a virtual X display, a screenshot of Spy's window and OCR to read its table.
