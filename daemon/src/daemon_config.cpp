@@ -123,11 +123,13 @@ DaemonConfig fromYaml(const YAML::Node& root, const std::string& name, const std
   c.service.state_dir = top.text("state_dir", c.service.state_dir);
   if (!c.service.state_dir.empty()) {
     // The error_code form: a path the OS refuses (too long, no permission) is a config error, not a throw.
+    // A missing directory is not: the daemon creates it (CalibrationStore::ensureDirectory).
     std::error_code ec;
-    const bool directory = std::filesystem::is_directory(c.service.state_dir, ec);
+    const auto status = std::filesystem::status(c.service.state_dir, ec);
     if (ec && ec != std::errc::no_such_file_or_directory)
       top.fail("state_dir", "'" + io::excerpt(c.service.state_dir) + "': " + ec.message());
-    if (!directory) top.fail("state_dir", "'" + io::excerpt(c.service.state_dir) + "' is not a directory");
+    if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+      top.fail("state_dir", "'" + io::excerpt(c.service.state_dir) + "' is not a directory");
   }
   c.service.sensors = top.texts("sensors", c.service.sensors);
   const std::set<std::string> unique(c.service.sensors.begin(), c.service.sensors.end());

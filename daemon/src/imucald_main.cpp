@@ -14,6 +14,8 @@
 #include <exception>
 #include <optional>
 
+#include "imucal/app/command_line.hpp"
+#include "imucal/daemon/calibration_store.hpp"
 #include "imucal/daemon/daemon_config.hpp"
 #include "imucal/daemon/lcm_node.hpp"
 #include "imucal/io/config.hpp"
@@ -47,6 +49,17 @@ DaemonConfig effectiveConfig(const Options& o) {
   return c;
 }
 
+// Created at start and on reload so a fresh install needs no mkdir; when it cannot be, the daemon still
+// calibrates and publishes, and each calibration it cannot persist is warned about (lcm_node.cpp).
+void prepareStateDir(const DaemonConfig& c) {
+  if (c.service.state_dir.empty()) return;
+  try {
+    imucal::daemon::CalibrationStore::ensureDirectory(c.service.state_dir);
+  } catch (const std::exception& e) {
+    spdlog::error("{}; calibrations will not be persisted", e.what());
+  }
+}
+
 // The signals arrive on a descriptor polled with LCM's, so they are handled between messages.
 int blockSignals() {
   sigset_t set;
@@ -68,6 +81,7 @@ void reload(const Options& o, DaemonConfig& running, imucal::daemon::Calibration
     if (next.lcm_url != running.lcm_url)
       spdlog::warn("reload: lcm_url '{}' takes effect only after a restart", next.lcm_url);
     next.lcm_url = running.lcm_url;
+    prepareStateDir(next);
     service.reconfigure(next.service);
     node.reconfigure(next.node);
     running = std::move(next);
@@ -82,6 +96,7 @@ void reload(const Options& o, DaemonConfig& running, imucal::daemon::Calibration
 
 int run(const Options& o) {
   DaemonConfig config = effectiveConfig(o);
+  prepareStateDir(config);
   lcm::LCM lcm(config.lcm_url);
   if (!lcm.good()) {
     spdlog::critical("cannot open LCM at '{}'", config.lcm_url.empty() ? "(default)" : config.lcm_url);
@@ -100,7 +115,7 @@ int run(const Options& o) {
     }
   }
   const int sig_fd = blockSignals();
-  spdlog::info("imucald: listening on {}, {} and {}", config.node.imu_channel, config.node.heading_channel,
+  spdlog::info("listening on {}, {} and {}", config.node.imu_channel, config.node.heading_channel,
                config.node.trigger_channel);
   // Under systemd (Type=notify): ready once subscribed; the watchdog is fed from the loop, so a daemon
   // stuck in a handler is restarted. Both are no-ops without NOTIFY_SOCKET.
@@ -124,7 +139,7 @@ int run(const Options& o) {
         if (info.ssi_signo == SIGHUP) {
           reload(o, config, service, node);
         } else {
-          spdlog::info("imucald: signal {}, stopping", info.ssi_signo);
+          spdlog::info("signal {}, stopping", info.ssi_signo);
           stop = true;
         }
       }
@@ -147,6 +162,7 @@ void addOverride(CLI::App& app, const std::string& flag, std::optional<T>& targe
 
 int main(int argc, char** argv) {
   CLI::App app{"imucald: IMU calibration daemon"};
+  imucal::app::CommandLine command_line(app, "imucald");
   Options o;
   app.add_option("--config", o.config_file, "Daemon configuration (YAML, see configs/imucald.yaml); SIGHUP re-reads it")
       ->check(CLI::ExistingFile);
@@ -161,14 +177,14 @@ int main(int argc, char** argv) {
   addOverride(app, "--status-channel", o.status_channel, "default IMUCAL_STATUS");
   addOverride(app, "--rate", o.rate, "Calibration publish rate, Hz of data time (default 1)");
   app.add_option("--restore", o.restore_sensors, "Sensor ids whose persisted calibration is published at start");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   try {
     return run(o);
   } catch (const imucal::io::InputError& e) {
-    spdlog::critical("imucald: configuration: {}", e.what());
+    spdlog::critical("configuration: {}", e.what());
     return 2;
   } catch (const std::exception& e) {
-    spdlog::critical("imucald: {}", e.what());
+    spdlog::critical("{}", e.what());
     return 1;
   }
 }
