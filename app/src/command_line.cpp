@@ -53,11 +53,16 @@ const CLI::App* activeCommand(const CLI::App& app) {
 CommandLine::CommandLine(CLI::App& app, std::string program) : app_(app), program_(std::move(program)) {
   app_.set_version_flag("--version", program_ + " " + kVersion);
   app_.add_option("--log-level", log_level_, "Log messages of this level and above (stderr)")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
+      ->check(CLI::IsMember(logLevelNames()))
       // Applied while parsing, before a subcommand's callback runs the command.
       ->each([](const std::string& level) { spdlog::set_level(spdlog::level::from_str(level)); })
       ->capture_default_str();
   app_.fallthrough();
+}
+
+const std::vector<std::string>& logLevelNames() {
+  static const std::vector<std::string> names{"trace", "debug", "info", "warn", "error", "off"};
+  return names;
 }
 
 std::string usageMessage(const CLI::App& app, const CLI::ParseError& e) {

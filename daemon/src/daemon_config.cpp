@@ -2,9 +2,11 @@
 #include "imucal/daemon/calibration_store.hpp"
 #include "imucal/io/errors.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
+#include "imucal/app/command_line.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/yaml_fields.hpp"
@@ -140,6 +142,10 @@ DaemonConfig fromYaml(const YAML::Node& root, const std::string& name, const std
   c.service.max_sensors = static_cast<std::size_t>(
       top.number("max_sensors", static_cast<double>(c.service.max_sensors), Range::between(1.0, 1000.0)));
   c.restore = top.boolean("restore", c.restore);
+  c.log_level = top.text("log_level", c.log_level);
+  const auto& levels = app::logLevelNames();
+  if (std::find(levels.begin(), levels.end(), c.log_level) == levels.end())
+    top.fail("log_level", "'" + io::excerpt(c.log_level) + "' is not one of trace, debug, info, warn, error, off");
   readChannels(top.section("channels"), c.node);
   readPublish(top.section("publish"), c.node);
   readHeading(top.section("heading"), c.node, c.service);

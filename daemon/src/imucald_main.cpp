@@ -28,7 +28,7 @@ using imucal::daemon::DaemonConfig;
 // Command-line values win over the configuration file, at start and on every reload.
 struct Options {
   std::string config_file;
-  std::optional<std::string> calibration_config, lcm_url, state_dir;
+  std::optional<std::string> calibration_config, lcm_url, state_dir, log_level;
   std::optional<std::string> imu_channel, heading_channel, trigger_channel, calibration_channel, status_channel;
   std::optional<double> rate;
   std::vector<std::string> restore_sensors;
@@ -39,6 +39,7 @@ DaemonConfig effectiveConfig(const Options& o) {
   if (o.calibration_config) c.service.filter = imucal::io::loadCalibrateConfig(*o.calibration_config).filter;
   if (o.lcm_url) c.lcm_url = *o.lcm_url;
   if (o.state_dir) c.service.state_dir = *o.state_dir;
+  if (o.log_level) c.log_level = *o.log_level;
   if (o.imu_channel) c.node.imu_channel = *o.imu_channel;
   if (o.heading_channel) c.node.heading_channel = *o.heading_channel;
   if (o.trigger_channel) c.node.trigger_channel = *o.trigger_channel;
@@ -49,9 +50,11 @@ DaemonConfig effectiveConfig(const Options& o) {
   return c;
 }
 
-// Created at start and on reload so a fresh install needs no mkdir; when it cannot be, the daemon still
-// calibrates and publishes, and each calibration it cannot persist is warned about (lcm_node.cpp).
-void prepareStateDir(const DaemonConfig& c) {
+// The log level, and the state directory: created at start and on reload so a fresh install needs no
+// mkdir; when it cannot be, the daemon still calibrates and publishes, and each calibration it cannot
+// persist is warned about (lcm_node.cpp).
+void applyConfig(const DaemonConfig& c) {
+  spdlog::set_level(spdlog::level::from_str(c.log_level));
   if (c.service.state_dir.empty()) return;
   try {
     imucal::daemon::CalibrationStore::ensureDirectory(c.service.state_dir);
@@ -81,7 +84,7 @@ void reload(const Options& o, DaemonConfig& running, imucal::daemon::Calibration
     if (next.lcm_url != running.lcm_url)
       spdlog::warn("reload: lcm_url '{}' takes effect only after a restart", next.lcm_url);
     next.lcm_url = running.lcm_url;
-    prepareStateDir(next);
+    applyConfig(next);
     service.reconfigure(next.service);
     node.reconfigure(next.node);
     running = std::move(next);
@@ -96,7 +99,7 @@ void reload(const Options& o, DaemonConfig& running, imucal::daemon::Calibration
 
 int run(const Options& o) {
   DaemonConfig config = effectiveConfig(o);
-  prepareStateDir(config);
+  applyConfig(config);
   lcm::LCM lcm(config.lcm_url);
   if (!lcm.good()) {
     spdlog::critical("cannot open LCM at '{}'", config.lcm_url.empty() ? "(default)" : config.lcm_url);
@@ -178,6 +181,7 @@ int main(int argc, char** argv) {
   addOverride(app, "--rate", o.rate, "Calibration publish rate, Hz of data time (default 1)");
   app.add_option("--restore", o.restore_sensors, "Sensor ids whose persisted calibration is published at start");
   if (const auto status = command_line.parse(argc, argv)) return *status;
+  if (command_line.logLevelGiven()) o.log_level = command_line.logLevel();
   try {
     return run(o);
   } catch (const imucal::io::InputError& e) {

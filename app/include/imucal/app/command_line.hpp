@@ -7,10 +7,14 @@
 #include <CLI/CLI.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace imucal::app {
 
 inline constexpr int kExitUsage = 2;
+
+// What --log-level (and imucald's log_level key) accept: trace, debug, info, warn, error, off.
+const std::vector<std::string>& logLevelNames();
 
 class CommandLine {
  public:
@@ -24,6 +28,7 @@ class CommandLine {
   std::optional<int> parse(int argc, const char* const* argv);
 
   const std::string& logLevel() const { return log_level_; }
+  bool logLevelGiven() const { return app_.count("--log-level") > 0; }
 
  private:
   CLI::App& app_;
