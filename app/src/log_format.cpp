@@ -51,7 +51,7 @@ void configureLogging(const std::string& program, const std::string& level) {
   auto logger = std::make_shared<spdlog::logger>(program, std::make_shared<spdlog::sinks::stderr_sink_mt>());
   logger->set_formatter(makeLogFormatter(program, logStyleFor(std::getenv("JOURNAL_STREAM"), STDERR_FILENO)));
   logger->set_level(spdlog::level::from_str(level));
-  // Warnings and errors reach the file or journal at once, whatever else buffers.
+  // Each line reaches the file or journal at once: tests and operators read it while the program runs.
   logger->flush_on(spdlog::level::trace);
   spdlog::set_default_logger(std::move(logger));
 }

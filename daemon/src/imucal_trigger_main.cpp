@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
       return 1;
     }
     std::cout << "trigger sent on " << r.trigger_channel << " for " << (r.sensor_id.empty() ? "every sensor" : r.sensor_id)
-              << "; imucald answered (" << answer->triggers << " triggers received)\n";
+              << "; imucald answered (triggers received: " << answer->triggers << ")\n";
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;
