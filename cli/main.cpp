@@ -5,10 +5,12 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "imucal/app/command_line.hpp"
 #include "imucal/io/errors.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"imucal: calibrate a MEMS IMU by hand with an error-state Kalman filter"};
+  imucal::app::CommandLine command_line(app, "imucal");
   app.require_subcommand(1);
   imucal::cli::addSimulateCommand(app);
   imucal::cli::addCalibrateCommand(app);
@@ -21,9 +23,7 @@ int main(int argc, char** argv) {
   imucal::cli::addLog2CsvCommand(app);
   imucal::cli::addMagcalCommand(app);
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (const auto status = command_line.parse(argc, argv)) return *status;
   } catch (const imucal::io::InputError& e) {
     std::cerr << "imucal: input error: " << e.what() << '\n';
     return 2;

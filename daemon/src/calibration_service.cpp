@@ -242,6 +242,7 @@ void CalibrationService::apply(const SessionOutcome& outcome) {
   report.last_stats = outcome.stats;
   report.advice = outcome.advice;
   report.notes = outcome.notes;
+  report.persist_error = outcome.persist_error;
   if (!outcome.calibration) {
     report.state = CalibrationState::Failed;
     report.failure = outcome.failure;
@@ -251,8 +252,6 @@ void CalibrationService::apply(const SessionOutcome& outcome) {
   report.restored = false;
   report.state = stateOf(*outcome.calibration);
   report.failure = outcome.calibration->incomplete;
-  if (!outcome.persist_error.empty())
-    report.failure += (report.failure.empty() ? "" : "; ") + std::string("not persisted: ") + outcome.persist_error;
 }
 
 }  // namespace imucal::daemon

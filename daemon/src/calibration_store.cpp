@@ -1,6 +1,7 @@
 #include "imucal/daemon/calibration_store.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <stdio.h>
 #include <unistd.h>
 
@@ -134,6 +135,22 @@ std::string CalibrationStore::pathFor(const std::string& sensor_id) const {
   return directory_ + "/" + fileNameOf(sensor_id);
 }
 
+void CalibrationStore::ensureDirectory(const std::string& directory) {
+  if (directory.empty()) throw std::runtime_error("state directory: an empty path");
+  std::string prefix;
+  std::size_t at = 0;
+  while (at != std::string::npos) {
+    at = directory.find('/', at + 1);
+    prefix = directory.substr(0, at);
+    if (::mkdir(prefix.c_str(), 0750) == 0) continue;
+    const int error = errno;
+    struct stat st {};
+    if (error == EEXIST && ::stat(prefix.c_str(), &st) == 0 && S_ISDIR(st.st_mode)) continue;
+    // A file in the way: what mkdir of the path below it says.
+    fail(prefix, std::string("cannot create the state directory: ") + std::strerror(error == EEXIST ? ENOTDIR : error));
+  }
+}
+
 void CalibrationStore::save(const StoredCalibration& c) const {
   nlohmann::json payload{{"sensor_id", c.sensor_id}, {"utime_s", c.utime_s}, {"names", c.names},
                          {"values", c.values},       {"sigmas", c.sigmas},   {"converged", c.converged},
@@ -145,6 +162,7 @@ void CalibrationStore::save(const StoredCalibration& c) const {
   const std::string text = file.dump(2) + "\n";
 
   const std::string path = pathFor(c.sensor_id);
+  ensureDirectory(directory_);
   const std::string tmp = path + ".tmp";
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd < 0) fail(tmp, std::string("cannot create: ") + std::strerror(errno));

@@ -2,9 +2,11 @@
 #include "imucal/daemon/calibration_store.hpp"
 #include "imucal/io/errors.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <set>
 
+#include "imucal/app/command_line.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/yaml_fields.hpp"
@@ -123,11 +125,13 @@ DaemonConfig fromYaml(const YAML::Node& root, const std::string& name, const std
   c.service.state_dir = top.text("state_dir", c.service.state_dir);
   if (!c.service.state_dir.empty()) {
     // The error_code form: a path the OS refuses (too long, no permission) is a config error, not a throw.
+    // A missing directory is not: the daemon creates it (CalibrationStore::ensureDirectory).
     std::error_code ec;
-    const bool directory = std::filesystem::is_directory(c.service.state_dir, ec);
+    const auto status = std::filesystem::status(c.service.state_dir, ec);
     if (ec && ec != std::errc::no_such_file_or_directory)
       top.fail("state_dir", "'" + io::excerpt(c.service.state_dir) + "': " + ec.message());
-    if (!directory) top.fail("state_dir", "'" + io::excerpt(c.service.state_dir) + "' is not a directory");
+    if (std::filesystem::exists(status) && !std::filesystem::is_directory(status))
+      top.fail("state_dir", "'" + io::excerpt(c.service.state_dir) + "' is not a directory");
   }
   c.service.sensors = top.texts("sensors", c.service.sensors);
   const std::set<std::string> unique(c.service.sensors.begin(), c.service.sensors.end());
@@ -138,6 +142,10 @@ DaemonConfig fromYaml(const YAML::Node& root, const std::string& name, const std
   c.service.max_sensors = static_cast<std::size_t>(
       top.number("max_sensors", static_cast<double>(c.service.max_sensors), Range::between(1.0, 1000.0)));
   c.restore = top.boolean("restore", c.restore);
+  c.log_level = top.text("log_level", c.log_level);
+  const auto& levels = app::logLevelNames();
+  if (std::find(levels.begin(), levels.end(), c.log_level) == levels.end())
+    top.fail("log_level", "'" + io::excerpt(c.log_level) + "' is not one of trace, debug, info, warn, error, off");
   readChannels(top.section("channels"), c.node);
   readPublish(top.section("publish"), c.node);
   readHeading(top.section("heading"), c.node, c.service);

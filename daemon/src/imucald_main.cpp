@@ -15,6 +15,8 @@
 #include <optional>
 #include <thread>
 
+#include "imucal/app/command_line.hpp"
+#include "imucal/daemon/calibration_store.hpp"
 #include "imucal/daemon/daemon_config.hpp"
 #include "imucal/daemon/lcm_node.hpp"
 #include "imucal/io/config.hpp"
@@ -27,7 +29,7 @@ using imucal::daemon::DaemonConfig;
 // Command-line values win over the configuration file, at start and on every reload.
 struct Options {
   std::string config_file;
-  std::optional<std::string> calibration_config, lcm_url, state_dir;
+  std::optional<std::string> calibration_config, lcm_url, state_dir, log_level;
   std::optional<std::string> imu_channel, heading_channel, trigger_channel, calibration_channel, status_channel;
   std::optional<double> rate;
   std::vector<std::string> restore_sensors;
@@ -38,6 +40,7 @@ DaemonConfig effectiveConfig(const Options& o) {
   if (o.calibration_config) c.service.filter = imucal::io::loadCalibrateConfig(*o.calibration_config).filter;
   if (o.lcm_url) c.lcm_url = *o.lcm_url;
   if (o.state_dir) c.service.state_dir = *o.state_dir;
+  if (o.log_level) c.log_level = *o.log_level;
   if (o.imu_channel) c.node.imu_channel = *o.imu_channel;
   if (o.heading_channel) c.node.heading_channel = *o.heading_channel;
   if (o.trigger_channel) c.node.trigger_channel = *o.trigger_channel;
@@ -57,6 +60,19 @@ constexpr int kMaxMessagesPerWake = 1000;
 void drainMessages(lcm::LCM& lcm) {
   if (lcm.handle() != 0) return;
   for (int i = 1; i < kMaxMessagesPerWake && lcm.handleTimeout(0) > 0; ++i) {
+  }
+}
+
+// The log level, and the state directory: created at start and on reload so a fresh install needs no
+// mkdir; when it cannot be, the daemon still calibrates and publishes, and each calibration it cannot
+// persist is warned about (lcm_node.cpp).
+void applyConfig(const DaemonConfig& c) {
+  spdlog::set_level(spdlog::level::from_str(c.log_level));
+  if (c.service.state_dir.empty()) return;
+  try {
+    imucal::daemon::CalibrationStore::ensureDirectory(c.service.state_dir);
+  } catch (const std::exception& e) {
+    spdlog::error("{}; calibrations will not be persisted", e.what());
   }
 }
 
@@ -81,6 +97,7 @@ void reload(const Options& o, DaemonConfig& running, imucal::daemon::Calibration
     if (next.lcm_url != running.lcm_url)
       spdlog::warn("reload: lcm_url '{}' takes effect only after a restart", next.lcm_url);
     next.lcm_url = running.lcm_url;
+    applyConfig(next);
     service.reconfigure(next.service);
     node.reconfigure(next.node);
     running = std::move(next);
@@ -95,6 +112,7 @@ void reload(const Options& o, DaemonConfig& running, imucal::daemon::Calibration
 
 int run(const Options& o) {
   DaemonConfig config = effectiveConfig(o);
+  applyConfig(config);
   lcm::LCM lcm(config.lcm_url);
   if (!lcm.good()) {
     spdlog::critical("cannot open LCM at '{}'", config.lcm_url.empty() ? "(default)" : config.lcm_url);
@@ -113,7 +131,7 @@ int run(const Options& o) {
     }
   }
   const int sig_fd = blockSignals();
-  spdlog::info("imucald: listening on {}, {} and {}", config.node.imu_channel, config.node.heading_channel,
+  spdlog::info("listening on {}, {} and {}", config.node.imu_channel, config.node.heading_channel,
                config.node.trigger_channel);
   // Under systemd (Type=notify): ready once subscribed; the watchdog is fed from the loop, so a daemon
   // stuck in a handler is restarted. Both are no-ops without NOTIFY_SOCKET.
@@ -138,7 +156,7 @@ int run(const Options& o) {
         if (info.ssi_signo == SIGHUP) {
           reload(o, config, service, node);
         } else {
-          spdlog::info("imucald: signal {}, stopping", info.ssi_signo);
+          spdlog::info("signal {}, stopping", info.ssi_signo);
           stop = true;
         }
       }
@@ -165,6 +183,7 @@ void addOverride(CLI::App& app, const std::string& flag, std::optional<T>& targe
 
 int main(int argc, char** argv) {
   CLI::App app{"imucald: IMU calibration daemon"};
+  imucal::app::CommandLine command_line(app, "imucald");
   Options o;
   app.add_option("--config", o.config_file, "Daemon configuration (YAML, see configs/imucald.yaml); SIGHUP re-reads it")
       ->check(CLI::ExistingFile);
@@ -179,14 +198,15 @@ int main(int argc, char** argv) {
   addOverride(app, "--status-channel", o.status_channel, "default IMUCAL_STATUS");
   addOverride(app, "--rate", o.rate, "Calibration publish rate, Hz of data time (default 1)");
   app.add_option("--restore", o.restore_sensors, "Sensor ids whose persisted calibration is published at start");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = command_line.parse(argc, argv)) return *status;
+  if (command_line.logLevelGiven()) o.log_level = command_line.logLevel();
   try {
     return run(o);
   } catch (const imucal::io::InputError& e) {
-    spdlog::critical("imucald: configuration: {}", e.what());
+    spdlog::critical("configuration: {}", e.what());
     return 2;
   } catch (const std::exception& e) {
-    spdlog::critical("imucald: {}", e.what());
+    spdlog::critical("{}", e.what());
     return 1;
   }
 }

@@ -132,6 +132,7 @@ void LcmNode::onTrigger(const imucal::calibration_trigger_t& msg) {
     } else {
       spdlog::warn("trigger from {} for {} ignored: no such sensor", who, what);
     }
+    answerTrigger(msg.sensor_id);
   } catch (const std::exception& e) {
     ++counters_.handler_errors;
     spdlog::error("trigger handler: {}", e.what());
@@ -159,6 +160,8 @@ void LcmNode::collectFinished() {
 
 void LcmNode::logNotes(const std::string& id, const SensorReport& report) {
   for (const std::string& note : report.notes) spdlog::warn("sensor {}: {}", id, note);
+  // Its own line at warning level: the calibration is published, but a restart will not restore it.
+  if (!report.persist_error.empty()) spdlog::warn("sensor {}: calibration not persisted: {}", id, report.persist_error);
 }
 
 double LcmNode::age(double since) const { return since < 0.0 ? -1.0 : clock_() - since; }
@@ -285,6 +288,19 @@ void LcmNode::publishStatus(const SensorReport& r, double data_now, std::int64_t
   m.config_reloads = static_cast<int32_t>(counters_.config_reloads);
   m.config_errors = static_cast<int32_t>(counters_.config_errors);
   lcm_.publish(config_.status_channel, &m);
+}
+
+// The sender learns at once that a daemon listens (imucal-trigger waits for this): the status of the
+// sensors the trigger names, or a daemon-wide one (empty sensor id) when it names none the daemon knows.
+void LcmNode::answerTrigger(const std::string& sensor_id) {
+  const std::int64_t utime = systemUtime();
+  bool answered = false;
+  for (const auto& [id, report] : service_.reports())
+    if (sensor_id.empty() || id == sensor_id) {
+      publishStatus(report, latest_, utime);
+      answered = true;
+    }
+  if (!answered) publishStatus(SensorReport{}, latest_, utime);
 }
 
 void LcmNode::publishDue(double now_s) {

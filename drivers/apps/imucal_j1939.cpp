@@ -94,14 +94,14 @@ int live(const J1939FileConfig& cfg, Publisher& out, EventLoop& loop) {
 
 int main(int argc, char** argv) {
   CLI::App app{"imucal-j1939: a J1939 IMU on SocketCAN (or a candump recording), published as imucal::imu_sample_t on LCM"};
+  imucal::app::CommandLine command_line(app, "imucal-j1939");
   node::DriverOptions o;
   node::addDriverOptions(app, o);
   std::string candump;
   double speed = 0.0;
   app.add_option("--candump", candump, "Replay this candump log (candump -l or -ta) instead of reading the bus")->check(CLI::ExistingFile);
   app.add_option("--speed", speed, "Replay speed: 1 = as recorded, 0 = as fast as possible")->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
-  node::setupLogging("imucal-j1939", o.log_level);
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   return node::runGuarded([&] {
     const J1939FileConfig cfg = loadJ1939Config(o.config);
     EventLoop loop;

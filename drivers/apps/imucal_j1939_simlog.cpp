@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "imucal/app/command_line.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/drivers/candump.hpp"
 #include "imucal/drivers/emulation/j1939_emulation.hpp"
@@ -18,6 +19,7 @@
 int main(int argc, char** argv) {
   using namespace imucal;
   CLI::App app{"imucal-j1939-simlog: a simulated J1939 IMU as a candump log"};
+  app::CommandLine command_line(app, "imucal-j1939-simlog");
   std::string sim_config, out_path, truth, interface = "can0";
   std::uint64_t seed = 1;
   double epoch = 1'700'000'000.0, latency_ms = 0.0;
@@ -30,7 +32,7 @@ int main(int argc, char** argv) {
   app.add_option("--epoch", epoch, "Unix time (s) of the motion's start in the log")->capture_default_str();
   app.add_option("--source-address", source, "J1939 source address")->check(CLI::Range(0, 0xFD))->capture_default_str();
   app.add_option("--latency-ms", latency_ms, "Measurement latency reported in the rate frames")->check(CLI::Range(0.0, 125.0));
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   try {
     const sim::SimConfig config = sim_config.empty() ? sim::paperScenario(5.0 * units::deg, true, seed) : io::loadSimConfig(sim_config);
     const sim::SimOutput out = sim::simulate(config, seed);
@@ -44,10 +46,10 @@ int main(int argc, char** argv) {
     const auto frames = drivers::emulation::j1939FramesFromSimulation(out, c);
     for (const auto& f : frames) file << drivers::formatCandumpLine(f, interface) << '\n';
     if (!file.flush()) throw io::OutputError(out_path + ": write failed");
-    spdlog::info("imucal-j1939-simlog: {} frames ({} samples) to {}", frames.size(), out.imu.size(), out_path);
+    spdlog::info("{} frames ({} samples) to {}", frames.size(), out.imu.size(), out_path);
     return 0;
   } catch (const std::exception& e) {
-    spdlog::critical("imucal-j1939-simlog: {}", e.what());
+    spdlog::critical("{}", e.what());
     return 1;
   }
 }

@@ -7,10 +7,10 @@ using namespace imucal::drivers;
 
 int main(int argc, char** argv) {
   CLI::App app{"imucal-lis3mdl: ST LIS3MDL over I2C, tilt-compensated heading published as imucal::heading_sample_t on LCM"};
+  imucal::app::CommandLine command_line(app, "imucal-lis3mdl");
   node::DriverOptions o;
   node::addDriverOptions(app, o);
-  CLI11_PARSE(app, argc, argv);
-  node::setupLogging("imucal-lis3mdl", o.log_level);
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   return node::runGuarded([&] {
     return node::runLis3mdl(o, [](const node::I2cDeviceSetup& setup, const Lis3mdlFileConfig&) { return node::openI2cDevice(setup); });
   });

@@ -8,12 +8,12 @@ using namespace imucal::drivers;
 
 int main(int argc, char** argv) {
   CLI::App app{"imucal-lis3mdl-emulated: imucal-lis3mdl on a register-level emulation of the chip fed from the simulator"};
+  imucal::app::CommandLine command_line(app, "imucal-lis3mdl-emulated");
   node::DriverOptions o;
   node::EmulationOptions e;
   node::addDriverOptions(app, o);
   node::addEmulationOptions(app, e);
-  CLI11_PARSE(app, argc, argv);
-  node::setupLogging("imucal-lis3mdl", o.log_level);
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   return node::runGuarded([&] {
     return node::runLis3mdl(o, [&](const node::I2cDeviceSetup& setup, const Lis3mdlFileConfig& cfg) {
       return node::openEmulatedI2cDevice(e, setup, [&](const emulation::MotionSource& source, std::function<double()> time_s) {

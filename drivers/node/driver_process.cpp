@@ -1,6 +1,5 @@
 #include "driver_process.hpp"
 
-#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -25,15 +24,7 @@ void addDriverOptions(CLI::App& app, DriverOptions& o) {
   app.add_option("--lcm-url", o.lcm_url, "LCM provider URL (default: LCM's own default)");
   app.add_option("--max-samples", o.max_samples, "Exit 0 after publishing this many samples (0 = run until stopped)")->capture_default_str();
   app.add_option("--sensor-id", o.sensor_id, "Published sensor_id (default: the config's sensor_id)");
-  app.add_option("--log-level", o.log_level, "trace, debug, info, warn, error")->capture_default_str();
   app.add_flag("--print", o.print, "Also print every published sample on stdout (CSV: imu,utime,seq,ax..gz,temperature_c,status,sensor_id / heading,utime,heading,sigma)");
-}
-
-void setupLogging(const std::string& program, const std::string& level) {
-  // stderr: stdout carries --print's samples.
-  spdlog::set_default_logger(spdlog::stderr_color_mt(program));
-  spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ " + program + ": %v");
-  spdlog::set_level(spdlog::level::from_str(level));
 }
 
 namespace {

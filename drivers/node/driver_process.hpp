@@ -1,5 +1,5 @@
 #pragma once
-// What the driver processes share: the contract flags, logging, the periodic counter log, and turning
+// What the driver processes share: the contract flags, the periodic counter log, and turning
 // readings into LCM messages. (The emulated programs' extras are in emulated/.)
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "imucal/app/command_line.hpp"
 #include "imucal/drivers/counters.hpp"
 #include "imucal/drivers/event_loop.hpp"
 #include "imucal/drivers/imu_reading.hpp"
@@ -20,13 +21,11 @@ struct DriverOptions {
   std::string lcm_url;
   std::uint64_t max_samples = 0;  // 0 = forever
   std::string sensor_id;          // overrides the config's
-  std::string log_level = "info";
   bool print = false;             // also print every published sample on stdout (CSV)
 };
 
-// --config, --lcm-url, --max-samples, --sensor-id, --log-level, --print.
+// --config, --lcm-url, --max-samples, --sensor-id, --print (--version and --log-level: imucal_app).
 void addDriverOptions(CLI::App& app, DriverOptions& options);
-void setupLogging(const std::string& program, const std::string& level);
 
 imucal::imu_sample_t toImuSample(const ImuReading& r, std::int64_t seq, const std::string& sensor_id);
 // One FIFO read (1 .. imu_batch_t::MAX_COUNT readings, times increasing) as one imu_batch_t: per-sample

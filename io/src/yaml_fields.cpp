@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "imucal/core/closest_name.hpp"
 #include "imucal/io/errors.hpp"
 #include "imucal/io/number_text.hpp"
 
@@ -23,22 +24,6 @@ std::string describe(const YAML::Node& node) {
     case YAML::NodeType::Scalar: return "'" + node.Scalar() + "'";
     default: return "nothing";
   }
-}
-
-// Edit distance, to suggest the intended key for a typo.
-std::size_t distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
 }
 
 }  // namespace
@@ -256,16 +241,9 @@ void YamlSection::finish() const {
       throwInputError(file_, lineOf(key_node),
                       keyPath(key) + ": given twice (first on line " + std::to_string(it->second) + ")");
     if (known_.count(key) != 0) continue;
-    std::string known_list, suggestion;
-    std::size_t best = 3;  // suggest only close matches
-    for (const auto& k : known_) {
-      known_list += (known_list.empty() ? "" : ", ") + k;
-      const std::size_t d = distance(key, k);
-      if (d < best) {
-        best = d;
-        suggestion = k;
-      }
-    }
+    std::string known_list;
+    for (const auto& k : known_) known_list += (known_list.empty() ? "" : ", ") + k;
+    const std::string suggestion = closestName(key, std::vector<std::string>(known_.begin(), known_.end()));
     std::string message = (path_.empty() ? "" : path_ + ": ") + "unknown key '" + key + "'";
     if (!suggestion.empty()) message += " (did you mean '" + suggestion + "'?)";
     message += (path_.empty() ? "; known top-level keys: " : "; known keys: ") + known_list;

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "fault_injection.hpp"
+#include "imucal/app/command_line.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/io/sim_formats.hpp"
@@ -139,9 +140,9 @@ int run(const Options& o) {
     previous = m;
   }
   flushBatch();
-  spdlog::info("imucal-sim-pub: published {} IMU and {} heading samples and {} bad messages", out.imu.size(), h,
+  spdlog::info("published {} IMU and {} heading samples and {} bad messages", out.imu.size(), h,
                injections.size());
-  if (out_lcm.failed() > 0) spdlog::warn("imucal-sim-pub: LCM refused {} of them", out_lcm.failed());
+  if (out_lcm.failed() > 0) spdlog::warn("LCM refused {} of them", out_lcm.failed());
   if (!o.report.empty()) {
     imucal::io::writeJsonFile(o.report, {{"imu", out.imu.size()},
                                          {"heading", h},
@@ -163,6 +164,7 @@ int run(const Options& o) {
 
 int main(int argc, char** argv) {
   CLI::App app{"imucal-sim-pub: publish a simulated IMU and heading sensor on LCM"};
+  imucal::app::CommandLine command_line(app, "imucal-sim-pub");
   Options o;
   app.add_option("--config", o.config, "Simulation config (YAML)")->required()->check(CLI::ExistingFile);
   app.add_option("--seed", o.seed)->capture_default_str();
@@ -182,11 +184,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--batch-period", o.batch_period, "Stamp batches by first time and period, not per sample");
   app.add_option("--report", o.report, "Write the counts of what was published here (JSON)");
-  CLI11_PARSE(app, argc, argv);
+  if (const auto status = command_line.parse(argc, argv)) return *status;
   try {
     return run(o);
   } catch (const std::exception& e) {
-    spdlog::critical("imucal-sim-pub: {}", e.what());
+    spdlog::critical("{}", e.what());
     return 1;
   }
 }

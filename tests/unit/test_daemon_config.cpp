@@ -27,6 +27,7 @@ TEST(DaemonConfig, ShippedFileHasTheDefaults) {
   const DaemonConfig d;
   EXPECT_EQ(c.lcm_url, d.lcm_url);
   EXPECT_EQ(c.restore, d.restore);
+  EXPECT_EQ(c.log_level, d.log_level);
   EXPECT_EQ(c.node.imu_channel, d.node.imu_channel);
   EXPECT_EQ(c.node.trigger_channel, d.node.trigger_channel);
   EXPECT_EQ(c.node.status_channel, d.node.status_channel);
@@ -53,6 +54,7 @@ TEST(DaemonConfig, SettingsArriveInSi) {
 lcm_url: "udpm://239.255.76.67:7667?ttl=0"
 sensors: [icm42688@i2c-1:0x68, imu1]
 restore: false
+log_level: warn
 channels: {imu: A_IMU, calibration: A_CAL, progress: A_PROGRESS}
 publish: {calibration_rate_hz: 5, status_rate_hz: 2, progress_rate_hz: 10}
 heading: {timeout_s: 0.5, keep_s: 60}
@@ -68,6 +70,7 @@ calibration:
 )", "imucald.yaml", ".");
   EXPECT_EQ(c.service.sensors, (std::vector<std::string>{"icm42688@i2c-1:0x68", "imu1"}));
   EXPECT_FALSE(c.restore);
+  EXPECT_EQ(c.log_level, "warn");
   EXPECT_EQ(c.node.imu_channel, "A_IMU");
   EXPECT_EQ(c.node.calibration_channel, "A_CAL");
   EXPECT_EQ(c.node.heading_channel, "IMUCAL_HEADING");
@@ -110,8 +113,8 @@ TEST(DaemonConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(errorOf("calibration_config: nowhere.yaml\n", "/nonexistent").find("/nonexistent/nowhere.yaml"),
             std::string::npos);
   EXPECT_NE(errorOf("calibration_config: a.yaml\ncalibration: {}\n").find("not both"), std::string::npos);
-  EXPECT_NE(errorOf("state_dir: /nonexistent/state\n").find("state_dir: '/nonexistent/state' is not a directory"),
-            std::string::npos);
+  EXPECT_NE(errorOf("state_dir: /dev/null\n").find("state_dir: '/dev/null' is not a directory"), std::string::npos)
+      << errorOf("state_dir: /dev/null\n");
   EXPECT_NE(errorOf("session: {min_still_s: 5, max_lead_still_s: 4}\n").find("max_lead_still_s"), std::string::npos);
   EXPECT_NE(errorOf("channels: [a]\n").find("expected a mapping"), std::string::npos);
   EXPECT_NE(errorOf("sensors: ['']\n").find("imucald.yaml:1: sensors: expected a name"), std::string::npos)
@@ -119,6 +122,12 @@ TEST(DaemonConfig, ErrorsNameFileLineAndKey) {
   EXPECT_NE(errorOf("sensors: ['" + std::string(100, '.') + "']\n").find("too long for a state file name"), std::string::npos)
       << errorOf("sensors: ['" + std::string(100, '.') + "']\n");
   EXPECT_NE(errorOf("max_sensors: 0\n").find("max_sensors"), std::string::npos);
+  EXPECT_NE(errorOf("log_level: loud\n").find("imucald.yaml:1: log_level: 'loud' is not one of trace, debug"), std::string::npos)
+      << errorOf("log_level: loud\n");
+}
+
+TEST(DaemonConfig, MissingStateDirIsAcceptedForTheDaemonToCreate) {
+  EXPECT_EQ(parseDaemonConfig("state_dir: /nonexistent/state\n", "imucald.yaml", ".").service.state_dir, "/nonexistent/state");
 }
 
 TEST(DaemonConfig, StateDirTheSystemRefusesIsAConfigErrorNamingTheKey) {

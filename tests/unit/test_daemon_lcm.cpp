@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -12,6 +14,8 @@
 #include "imucal/daemon/lcm_node.hpp"
 #include "imucal/sim/simulator.hpp"
 #include "lcm_collector.hpp"
+#include "scratch_dir.hpp"
+#include "spdlog_capture.hpp"
 
 namespace imucal::daemon {
 namespace {
@@ -35,18 +39,19 @@ imucal::imu_sample_t toMessage(const ImuSample& s, std::int64_t seq) {
 
 // The daemon's front end on memq:// with 5 deg heading noise, and what it publishes.
 struct MemqDaemon {
-  static ServiceConfig serviceConfig() {
+  static ServiceConfig serviceConfig(const std::string& state_dir) {
     ServiceConfig config;
     config.filter.measurements.heading_sigma = 5.0 * units::deg;
+    config.state_dir = state_dir;
     return config;
   }
-  MemqDaemon() {
+  explicit MemqDaemon(const std::string& state_dir = "") : service(serviceConfig(state_dir)) {
     lcm.subscribe("IMUCAL_CALIBRATION", &Collector::onCalibration, &collector);
     lcm.subscribe("IMUCAL_STATUS", &Collector::onStatus, &collector);
     lcm.subscribe("IMUCAL_PROGRESS", &Collector::onProgress, &collector);
   }
   lcm::LCM lcm{"memq://"};
-  CalibrationService service{serviceConfig()};
+  CalibrationService service;
   LcmNode node{lcm, NodeConfig{}, service};
   Collector collector;
 };
@@ -63,30 +68,39 @@ void publishHeadingsUpTo(lcm::LCM& lcm, const sim::SimOutput& out, double t, std
   }
 }
 
-TEST(DaemonLcm, MemqSessionPublishesTheCalibration) {
+sim::SimOutput paperSession() {
   sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 51);
   sc.motion.segments.back().duration = 12.0;
-  const sim::SimOutput out = sim::simulate(sc, 51);
+  return sim::simulate(sc, 51);
+}
 
+// Publishes every sample as a message, and first what `before` adds ahead of sample k.
+void play(MemqDaemon& d, const sim::SimOutput& out,
+          const std::function<void(std::size_t k, const imucal::imu_sample_t& m)>& before = {}) {
+  std::size_t h = 0;
+  for (std::size_t k = 0; k < out.imu.size(); ++k) {
+    publishHeadingsUpTo(d.lcm, out, out.imu[k].t, h);
+    const imucal::imu_sample_t m = toMessage(out.imu[k], static_cast<std::int64_t>(k));
+    if (before) before(k, m);
+    d.lcm.publish("IMUCAL_IMU", &m);
+    while (d.lcm.handleTimeout(0) > 0) {
+    }
+  }
+}
+
+TEST(DaemonLcm, MemqSessionPublishesTheCalibration) {
+  const sim::SimOutput out = paperSession();
   MemqDaemon d;
   ASSERT_TRUE(d.lcm.good());
-  lcm::LCM& lcm = d.lcm;
   LcmNode& node = d.node;
   Collector& collector = d.collector;
 
-  std::size_t h = 0;
-  for (std::size_t k = 0; k < out.imu.size(); ++k) {
-    publishHeadingsUpTo(lcm, out, out.imu[k].t, h);
-    imucal::imu_sample_t m = toMessage(out.imu[k], static_cast<std::int64_t>(k));
-    if (k == 300) {
-      imucal::imu_sample_t bad = m;
-      bad.gyro[1] = std::numeric_limits<double>::quiet_NaN();
-      lcm.publish("IMUCAL_IMU", &bad);
-    }
-    lcm.publish("IMUCAL_IMU", &m);
-    while (lcm.handleTimeout(0) > 0) {
-    }
-  }
+  play(d, out, [&](std::size_t k, const imucal::imu_sample_t& m) {
+    if (k != 300) return;
+    imucal::imu_sample_t bad = m;
+    bad.gyro[1] = std::numeric_limits<double>::quiet_NaN();
+    d.lcm.publish("IMUCAL_IMU", &bad);
+  });
   ASSERT_FALSE(collector.calibrations.empty());
   const imucal::calibration_t& last = collector.calibrations.back();
   ASSERT_EQ(last.state, imucal::calibration_t::STATE_CONVERGED) << last.model;
@@ -103,6 +117,39 @@ TEST(DaemonLcm, MemqSessionPublishesTheCalibration) {
   EXPECT_EQ(collector.statuses.back().rejected_nan, 1);
   EXPECT_NEAR(collector.statuses.back().imu_rate_hz, 100.0, 2.0);
   EXPECT_EQ(node.handlerErrors(), 0u);
+}
+
+// A state file that cannot be written (a file where the state directory should be): the calibration is
+// still published, and the failure is a warning line of its own naming the path and the system's reason.
+TEST(DaemonLcm, UnwritableStateIsAWarningAndTheCalibrationIsStillPublished) {
+  imucal::testing::ScratchDir dir;
+  const std::string in_the_way = dir.write("file", "");
+  imucal::testing::SpdlogCapture log;
+  MemqDaemon d(in_the_way + "/state");
+  play(d, paperSession());
+  ASSERT_FALSE(d.collector.calibrations.empty());
+  EXPECT_EQ(d.collector.calibrations.back().state, imucal::calibration_t::STATE_CONVERGED);
+  const std::string line = "warning test: sensor imu0: calibration not persisted: " + in_the_way +
+                           ": cannot create the state directory: Not a directory\n";
+  EXPECT_NE(log.text().find(line), std::string::npos) << log.text();
+  EXPECT_EQ(log.text().find("(not persisted"), std::string::npos) << log.text();
+}
+
+// A missing state directory, several levels deep, is created (mode 0750) and the calibration written.
+TEST(DaemonLcm, MissingNestedStateDirIsCreated) {
+  imucal::testing::ScratchDir dir;
+  const std::string state_dir = dir / "var/lib/imucal";
+  imucal::testing::SpdlogCapture log;
+  MemqDaemon d(state_dir);
+  play(d, paperSession());
+  ASSERT_FALSE(d.collector.calibrations.empty());
+  EXPECT_EQ(d.collector.calibrations.back().state, imucal::calibration_t::STATE_CONVERGED);
+  EXPECT_TRUE(std::filesystem::is_regular_file(state_dir + "/calibration-imu0.json")) << log.text();
+  for (const std::string& made : {dir / "var", dir / "var/lib", state_dir})
+    EXPECT_EQ(std::filesystem::status(made).permissions() & std::filesystem::perms::all,
+              std::filesystem::perms::owner_all | std::filesystem::perms::group_read | std::filesystem::perms::group_exec)
+        << made;
+  EXPECT_EQ(log.text().find("not persisted"), std::string::npos) << log.text();
 }
 
 // The same session sent as imu_batch_t messages of 16 samples (per-sample stamps, then first time and

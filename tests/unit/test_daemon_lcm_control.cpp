@@ -3,10 +3,12 @@
 // and new channels after a reload are subscribed while the old ones are not.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 
 #include "imucal/core/units.hpp"
 #include "imucal/daemon/lcm_node.hpp"
+#include "imucal/daemon/trigger_request.hpp"
 #include "imucal/sim/simulator.hpp"
 #include "lcm_collector.hpp"
 
@@ -94,6 +96,43 @@ TEST_F(DaemonLcmControl, TriggerMessageStartsTheOnlySessionWhenNotAutomatic) {
   for (int i = 0; i < 3; ++i)
     EXPECT_LT(std::abs(last.accel_bias[i] - out.applied_errors.accel.bias(i)), 4.0 * last.accel_bias_sigma[i]) << i;
   EXPECT_EQ(got_.statuses.back().triggers, 1);
+}
+
+// imucal-trigger's exchange: the daemon answers a trigger at once with a status, so the sender knows a
+// daemon listens; with no sensor known yet the answer is a daemon-wide status (empty sensor id).
+TEST_F(DaemonLcmControl, TriggerIsAnsweredAtOnceWithAStatus) {
+  CalibrationService service(ServiceConfig{});
+  LcmNode node(lcm_, NodeConfig{}, service, clock());
+  TriggerRequest request;
+  request.requester = "test";
+  request.timeout_s = 10.0;
+  const auto daemon_wide = requestCalibration(lcm_, request);
+  ASSERT_TRUE(daemon_wide);
+  EXPECT_EQ(daemon_wide->sensor_id, "");
+  EXPECT_EQ(daemon_wide->triggers, 1);
+
+  ImuSample still;
+  still.accel = Vec3(0.0, 0.0, -9.81);
+  const imucal::imu_sample_t m = imuMessage(still, 1.7e9);
+  lcm_.publish("IMUCAL_IMU", &m);
+  drain(lcm_);
+  request.sensor_id = "imu0";
+  const auto own = requestCalibration(lcm_, request);
+  ASSERT_TRUE(own);
+  EXPECT_EQ(own->sensor_id, "imu0");
+  EXPECT_EQ(own->triggers, 2);
+  EXPECT_EQ(own->imu_accepted, 1);
+}
+
+TEST(DaemonTrigger, WithoutADaemonThereIsNoAnswerWithinTheTimeout) {
+  lcm::LCM lcm("memq://");
+  TriggerRequest request;
+  request.timeout_s = 0.3;
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(requestCalibration(lcm, request));
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(waited, 0.29);
+  EXPECT_LT(waited, 2.0);
 }
 
 TEST_F(DaemonLcmControl, StatusGoesOnInWallTimeWhenTheImuStops) {

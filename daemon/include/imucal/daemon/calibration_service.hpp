@@ -61,6 +61,7 @@ struct SensorReport {
   bool restored = false;          // loaded from disk, not made in this run
   std::optional<StoredCalibration> calibration;
   std::string failure;            // why the last session failed
+  std::string persist_error;      // why the last calibration could not be written (empty: written, or no state_dir)
   std::string restore_error;      // why the persisted calibration was not restored (empty: none or restored)
   InputCounters imu;
   std::uint64_t heading_accepted = 0, heading_rejected = 0;

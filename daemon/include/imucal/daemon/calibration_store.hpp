@@ -34,8 +34,12 @@ class CalibrationStore {
   static constexpr int kSchemaVersion = 1;
   explicit CalibrationStore(std::string directory) : directory_(std::move(directory)) {}
 
-  // Throws std::runtime_error naming the path when the file cannot be written durably.
+  // Creates the directory first when it is missing (ensureDirectory). Throws std::runtime_error naming
+  // the path and the system's reason when the file cannot be written durably.
   void save(const StoredCalibration& calibration) const;
+  // mkdir -p with mode 0750 for what is created (the service's calibrations: its group may read them).
+  // Throws std::runtime_error naming the first path that is not, and cannot be made, a directory.
+  static void ensureDirectory(const std::string& directory);
   // Empty when there is none; throws std::runtime_error naming the path and the reason (bad checksum,
   // unknown schema, malformed, not a regular file, too large, non-finite numbers) when something is there
   // but cannot be trusted.

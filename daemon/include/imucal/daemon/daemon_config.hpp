@@ -13,6 +13,7 @@ namespace imucal::daemon {
 struct DaemonConfig {
   std::string lcm_url;           // empty: LCM's default (or $LCM_DEFAULT_URL)
   bool restore = true;           // publish the persisted calibration of every listed sensor at start
+  std::string log_level = "info";  // one of app::logLevelNames(); --log-level wins
   NodeConfig node;
   ServiceConfig service;
 };

@@ -72,6 +72,7 @@ class LcmNode {
   void onTrigger(const imucal::calibration_trigger_t& msg);
   void publishStatuses(double data_now, std::int64_t utime);
   void publishStatus(const SensorReport& report, double data_now, std::int64_t utime);
+  void answerTrigger(const std::string& sensor_id);
   void publishProgress(std::int64_t utime);
   // How the last session was calibrated when not as configured (SensorReport::notes), once per session.
   static void logNotes(const std::string& id, const SensorReport& report);
