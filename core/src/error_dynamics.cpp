@@ -164,14 +164,19 @@ namespace {
 void josephFromColumn(StateMat& P, const StateVec& a, double s, StateVec& K, const StateVec* mask) {
   // With a = P h and s = h^T P h + r, (I - K h^T) P (I - K h^T)^T + r K K^T expands to
   // P - K a^T - a K^T + s K K^T for any gain K: the Joseph form in O(n^2). As the symmetric rank-2 update
-  // P - (K v^T + v K^T) with v = a - s K / 2 it is one pass over P, and an element and its mirror get the
-  // same two products, so the update keeps P exactly symmetric. With the optimal gain it equals
-  // P - a a^T / s, which costs half as much, but the rounding of K then enters P directly; here it cancels
-  // to first order (measured against a long-double reference: several times closer).
+  // P - (K v^T + v K^T) with v = a - s K / 2 it is one pass over P. An element and its mirror get the
+  // same two products, but where the compiler fuses one of them into a multiply-add (GCC does on arm64)
+  // the two sums round differently: the upper triangle is computed and mirrored, so P stays exactly
+  // symmetric on every target. With the optimal gain it equals P - a a^T / s, which costs half as much,
+  // but the rounding of K then enters P directly; here it cancels to first order (measured against a
+  // long-double reference: several times closer).
   K = a / s;
   if (mask != nullptr) K.array() *= mask->array();
   const StateVec v = a - (0.5 * s) * K;
-  for (Eigen::Index j = 0; j < P.cols(); ++j) P.col(j).noalias() -= K * v(j) + v * K(j);
+  for (Eigen::Index j = 0; j < P.cols(); ++j) {
+    P.col(j).head(j + 1).noalias() -= K.head(j + 1) * v(j) + v.head(j + 1) * K(j);
+    P.row(j).head(j) = P.col(j).head(j).transpose();
+  }
 }
 
 }  // namespace

@@ -53,7 +53,11 @@ std::uint32_t encodeIdentifier(const Identifier& id) {
 }
 
 Value decode16(std::uint16_t raw, double scale, double offset) {
-  if (raw <= kMaxValid16) return {ValueState::Valid, raw * scale + offset};
+  // J1939 offsets are whole counts of the resolution (-32000 for both PGNs here): added as counts before
+  // scaling, the one rounding is the scale's and the zero code decodes to exactly 0. raw * scale + offset
+  // rounds twice, or once where the compiler fuses it into a multiply-add (GCC does on arm64), and there
+  // 0x7D00 came out -3e-16 rad/s.
+  if (raw <= kMaxValid16) return {ValueState::Valid, (raw + std::round(offset / scale)) * scale};
   if (raw >= 0xFF00) return {ValueState::NotAvailable, 0.0};
   if (raw >= kError16) return {ValueState::Error, 0.0};
   return {ValueState::Reserved, 0.0};
@@ -61,7 +65,7 @@ Value decode16(std::uint16_t raw, double scale, double offset) {
 
 std::uint16_t encode16(double value, double scale, double offset) {
   if (std::isnan(value)) return kNotAvailable16;
-  const double counts = std::round((value - offset) / scale);
+  const double counts = std::round(value / scale) - std::round(offset / scale);
   if (counts < 0.0 || counts > kMaxValid16) return kError16;
   return static_cast<std::uint16_t>(counts);
 }

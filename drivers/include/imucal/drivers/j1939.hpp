@@ -62,7 +62,8 @@ std::array<std::uint8_t, 8> encodeAngularRate(double pitch, double roll, double 
 std::array<std::uint8_t, 8> encodeAcceleration(double lateral, double longitudinal, double vertical,
                                                const std::array<FigureOfMerit, 3>& merit);
 
-// Raw two-byte codes, exposed for the tests of the ranges.
+// Raw two-byte codes, exposed for the tests of the ranges. offset is a whole number of counts of scale, as
+// J1939 defines its offsets (it is rounded to one).
 Value decode16(std::uint16_t raw, double scale, double offset);
 std::uint16_t encode16(double value, double scale, double offset);
 
