@@ -272,8 +272,9 @@ void Eskf::correct() {
   } else {
     g = Mat3::Identity() + 0.5 * skew(dphi);
   }
-  P_.middleRows<3>(L::kAtt) = (g * P_.middleRows<3>(L::kAtt)).eval();
-  P_.middleCols<3>(L::kAtt) = (P_.middleCols<3>(L::kAtt) * g.transpose()).eval();
+  // Coefficient-based products (lazyProduct): at these sizes Eigen's blocked product costs more than it saves.
+  P_.middleRows<3>(L::kAtt) = g.lazyProduct(P_.middleRows<3>(L::kAtt)).eval();
+  P_.middleCols<3>(L::kAtt) = P_.middleCols<3>(L::kAtt).lazyProduct(g.transpose()).eval();
 }
 
 }  // namespace imucal

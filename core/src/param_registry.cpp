@@ -74,6 +74,11 @@ std::optional<ParamRef> findParam(const std::string& name) {
   return std::nullopt;
 }
 
+std::string nameWithSiUnit(const std::string& name) {
+  const std::optional<ParamRef> ref = findParam(name);
+  return ref ? name + " [" + ref->info().si_unit + "]" : name;
+}
+
 std::pair<int, int> matrixIndex(const ParamRef& ref) {
   const std::string& c = ref.info().components.at(static_cast<std::size_t>(ref.component));
   if (c.size() != 2) return {-1, -1};

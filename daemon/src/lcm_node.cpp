@@ -199,7 +199,8 @@ imucal::calibration_t LcmNode::toMessage(const SensorReport& r, std::int64_t uti
   m.calibrated_utime = utimeAfter(c.utime_s);
   m.model = c.model;
   m.num_params = static_cast<int32_t>(c.names.size());
-  m.param_names = c.names;
+  m.param_names.clear();
+  for (const std::string& name : c.names) m.param_names.push_back(nameWithSiUnit(name));
   m.values = c.values;
   m.sigmas = c.sigmas;
   m.converged.assign(c.converged.begin(), c.converged.end());

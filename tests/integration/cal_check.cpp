@@ -129,7 +129,8 @@ int main(int argc, char** argv) {
               << est / unit << std::setw(11) << sigma / unit << ' ' << std::left << std::setw(5) << label << std::right
               << std::setw(9) << t / unit << std::setw(10) << std::setprecision(2) << z;
     for (std::size_t i = 0; i < m.param_names.size(); ++i) {
-      if (m.param_names[i] != name) continue;
+      // The message names carry their unit: "gyro_bias_z [rad/s]".
+      if (m.param_names[i].rfind(name + " [", 0) != 0) continue;
       if (m.converged[i]) {
         std::cout << std::setw(11) << std::setprecision(1) << m.convergence_time_s[i] << " s";
       } else {

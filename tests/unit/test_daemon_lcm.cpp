@@ -105,6 +105,11 @@ TEST(DaemonLcm, MemqSessionPublishesTheCalibration) {
   const imucal::calibration_t& last = collector.calibrations.back();
   ASSERT_EQ(last.state, imucal::calibration_t::STATE_CONVERGED) << last.model;
   EXPECT_FALSE(last.restored);
+  // Each name carries its SI unit, as calibration_t.lcm promises; the values are in it.
+  ASSERT_GE(last.num_params, 6);
+  EXPECT_EQ(last.param_names[0], "accel_bias_x [m/s^2]");
+  EXPECT_EQ(last.param_names[5], "gyro_bias_z [rad/s]");
+  EXPECT_EQ(last.values[5], last.gyro_bias[2]);
   for (int i = 0; i < 3; ++i) {
     EXPECT_LT(std::abs(last.accel_bias[i] - out.applied_errors.accel.bias(i)), 4.0 * last.accel_bias_sigma[i]) << i;
     EXPECT_LT(std::abs(last.gyro_bias[i] - out.applied_errors.gyro.bias(i)), 4.0 * last.gyro_bias_sigma[i]) << i;

@@ -39,6 +39,17 @@ TEST(ParamRegistry, NamesAreUniqueAndFoundAgain) {
   EXPECT_TRUE(findParam("gravity").has_value());
 }
 
+TEST(ParamRegistry, MessageNamesCarryTheSiUnit) {
+  // What calibration_t.lcm promises its readers.
+  EXPECT_EQ(nameWithSiUnit("accel_bias_x"), "accel_bias_x [m/s^2]");
+  EXPECT_EQ(nameWithSiUnit("gyro_bias_z"), "gyro_bias_z [rad/s]");
+  EXPECT_EQ(nameWithSiUnit("gyro_scale_y"), "gyro_scale_y [1]");
+  EXPECT_EQ(nameWithSiUnit("accel_misalignment_zy"), "accel_misalignment_zy [rad]");
+  EXPECT_EQ(nameWithSiUnit("gyro_g_sensitivity_zz"), "gyro_g_sensitivity_zz [rad/s/(m/s^2)]");
+  EXPECT_EQ(nameWithSiUnit("gravity"), "gravity [m/s^2]");
+  EXPECT_EQ(nameWithSiUnit("no_such_parameter"), "no_such_parameter");
+}
+
 TEST(ParamRegistry, MatrixComponentsNameRowThenColumn) {
   EXPECT_EQ(matrixIndex({ParamBlock::AccelMisalignment, 0}), std::make_pair(1, 0));  // yx
   EXPECT_EQ(matrixIndex({ParamBlock::GyroMisalignment, 4}), std::make_pair(2, 0));   // zx

@@ -77,6 +77,9 @@ struct ParamRef {
 };
 // By exact name ("gyro_misalignment_zx"), over every name the table defines.
 std::optional<ParamRef> findParam(const std::string& name);
+// The name with its block's SI unit, as calibration_t carries it: "accel_bias_x [m/s^2]" (a name the
+// table does not define is returned as it is).
+std::string nameWithSiUnit(const std::string& name);
 
 // Row and column of a matrix-valued block's component ("zx" -> 2, 0); -1, -1 for a vector block.
 std::pair<int, int> matrixIndex(const ParamRef& ref);
