@@ -14,6 +14,8 @@
 #include "recording_input.hpp"
 #include "imucal/core/calibrator.hpp"
 #include "imucal/core/consistency.hpp"
+#include "imucal/core/exported_params.hpp"
+#include "imucal/core/param_vector.hpp"
 #include "imucal/core/standard_intrinsics.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
@@ -36,6 +38,7 @@ struct CalibrateArgs {
   std::string truth;
   std::string intrinsics;
   std::string kalibr;
+  std::string openvins;
   std::string plot;
 };
 
@@ -120,6 +123,50 @@ std::string joinLines(const std::vector<std::string>& lines) {
   return out;
 }
 
+std::vector<std::string> exportPaths(const CalibrateArgs& args) {
+  std::vector<std::string> out;
+  for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins})
+    if (!p->empty()) out.push_back(*p);
+  return out;
+}
+
+bool allFinite(const StandardIntrinsics& s) { return s.flatten().allFinite(); }
+
+// The intrinsics files of an accepted result. A result whose sensor matrices are no sensor's (a
+// non-positive determinant, a value that is not finite) is refused here: its numbers cannot be exported.
+// Returns the reason of such a refusal, "" when the files were written.
+std::string writeExports(const CalibrateArgs& args, const io::CalibrateConfig& config, const Recording& recording,
+                         const CalibrationResult& result) {
+  const FilterConfig effective = effectiveConfig(config.filter);
+  const ExportedParams exported = exportedParams(result, priorMean(result.layout, effective));
+  IntrinsicsWithSigma intrinsics;
+  try {
+    intrinsics = intrinsicsWithSigma(result.layout, effective.model, exported.estimate, exported.covariance);
+  } catch (const std::invalid_argument& e) {
+    return std::string("the estimated sensor matrices are no sensor's: ") + e.what();
+  }
+  if (!allFinite(intrinsics.value) || !allFinite(intrinsics.sigma))
+    return "the estimated sensor matrices or their sigmas are not finite numbers";
+  const double span = recording.imu.back().t - recording.imu.front().t;
+  const double rate = recording.clock.valid ? recording.clock.rate : static_cast<double>(recording.imu.size() - 1) / span;
+  if (!args.intrinsics.empty()) {
+    io::writeJsonFile(args.intrinsics, io::intrinsicsJson(result, exported, intrinsics));
+    std::cout << "wrote " << args.intrinsics << '\n';
+  }
+  if (!args.kalibr.empty()) {
+    io::writeFileAtomically(args.kalibr, io::kalibrImuYaml(result, exported, intrinsics, rate));
+    std::cout << "wrote " << args.kalibr << '\n';
+  }
+  if (!args.openvins.empty()) {
+    io::writeFileAtomically(args.openvins, io::openVinsImuYaml(result, exported, intrinsics, rate));
+    std::cout << "wrote " << args.openvins << '\n';
+  }
+  if (!exported.at_prior.empty())
+    std::cout << "intrinsics: " << exported.at_prior.size()
+              << " parameters did not converge and are written at their prior mean (listed in each file)\n";
+  return "";
+}
+
 void runCalibrateCommand(const CalibrateArgs& args) {
   io::CalibrateConfig config;
   if (!args.config.empty()) config = io::loadCalibrateConfig(args.config);
@@ -129,7 +176,13 @@ void runCalibrateCommand(const CalibrateArgs& args) {
   options.check_halves = true;
   CalibrationResult result = calibrate(recording.imu, recording.heading, config.filter, options);
   // A result whose innovations contradict its model is kept for inspection but promises nothing.
-  const std::vector<std::string> problems = inconsistencies(result);
+  std::vector<std::string> problems = inconsistencies(result);
+  const bool model_misfit = !problems.empty();
+  // Intrinsics come only from an accepted result, and one whose matrices cannot be exported is refused too.
+  if (problems.empty() && !exportPaths(args).empty()) {
+    const std::string why = writeExports(args, config, recording, result);
+    if (!why.empty()) problems.push_back(why);
+  }
   if (!problems.empty()) result.converged.assign(result.converged.size(), false);
   nlohmann::json json = io::resultToJson(result);
   json["inputs"] = {{"imu", args.input.imu}, {"lcm_log", args.input.lcm_log}, {"heading", args.input.heading},
@@ -151,23 +204,6 @@ void runCalibrateCommand(const CalibrateArgs& args) {
   }
   io::writeJsonFile(args.out, json);
   if (!args.history.empty()) io::writeHistoryCsv(args.history, result);
-  if (!args.intrinsics.empty() || !args.kalibr.empty()) {
-    const IntrinsicsWithSigma intrinsics =
-        intrinsicsWithSigma(result.layout, effectiveConfig(config.filter).model, result.estimate, result.covariance);
-    if (!args.intrinsics.empty()) {
-      nlohmann::json j = io::intrinsicsJson(result, intrinsics);
-      j["refused"] = problems;
-      io::writeJsonFile(args.intrinsics, j);
-      std::cout << "wrote " << args.intrinsics << '\n';
-    }
-    if (!args.kalibr.empty()) {
-      const double span = recording.imu.back().t - recording.imu.front().t;
-      const double rate = recording.clock.valid ? recording.clock.rate
-                                                : static_cast<double>(recording.imu.size() - 1) / span;
-      io::writeFileAtomically(args.kalibr, io::kalibrImuYaml(result, intrinsics, rate));
-      std::cout << "wrote " << args.kalibr << '\n';
-    }
-  }
 
   nlohmann::json truth;
   if (!args.truth.empty()) truth = loadTruth(args.truth);
@@ -177,9 +213,16 @@ void runCalibrateCommand(const CalibrateArgs& args) {
   }
   printSummary(result, args.truth.empty() ? nullptr : &truth);
   std::cout << "wrote " << args.out << (args.history.empty() ? "" : " and " + args.history) << '\n';
-  if (!problems.empty())
-    throw ResultRefused("the model does not describe this recording, so no estimate or sigma can be trusted (" +
-                        joinLines(problems) + "); " + args.out + " keeps the numbers, marked refused");
+  if (!problems.empty()) {
+    // Said before the refusal itself, so the last line a user reads is why.
+    for (const std::string& path : exportPaths(args))
+      std::cout << "not written: " << path << " (a refused result has no intrinsics to export"
+                << (std::filesystem::exists(path) ? "; the file there is from an earlier run)" : ")") << '\n';
+    throw ResultRefused(std::string(model_misfit ? "the model does not describe this recording"
+                                                 : "the estimate is not a sensor's") +
+                        ", so no estimate or sigma can be trusted (" + joinLines(problems) + "); " + args.out +
+                        " keeps the numbers, marked refused");
+  }
 }
 
 }  // namespace
@@ -194,6 +237,8 @@ void addCalibrateCommand(CLI::App& app) {
   cmd->add_option("--intrinsics", args->intrinsics,
                   "Also write the standard intrinsics (sensor matrices, Kalibr and imu_tk forms, sigmas, correlations) as JSON");
   cmd->add_option("--kalibr", args->kalibr, "Also write the intrinsics as a Kalibr IMU YAML (scale-misalignment model)");
+  cmd->add_option("--openvins", args->openvins,
+                  "Also write the intrinsics as OpenVINS's kalibr_imu_chain.yaml (model kalibr: Tw, R_IMUtoGYRO, Ta, R_IMUtoACC, Tg)");
   cmd->add_option("--plot", args->plot,
                   "Also write an SVG of every estimated parameter's estimate +- 1-sigma over time, moves shaded");
   cmd->add_option("--truth", args->truth, "truth.json from `imucal simulate`: print the error of each estimate (and draw the truth in --plot)")->check(CLI::ExistingFile);

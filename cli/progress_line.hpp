@@ -12,6 +12,14 @@ namespace imucal::cli {
 // deg, need 300" once a motion was refused.
 std::string progressLine(const imucal::session_progress_t& m);
 
+// After a session, the calibration just published in words: "imu0 | calibrated | gyro_bias [deg/h] x 12 +- 3,
+// ... | accel_bias [ug] ...", "imu0 | partial: more motion settles the rest | ... | 1 of 15 not converged:
+// gyro_bias_z", "imu0 | refused: <why>".
+std::string resultLine(const imucal::calibration_t& m);
+
+// The line cut to a terminal's width ("..." at the end), so rewriting it in place never wraps.
+std::string fitToWidth(const std::string& line, std::size_t width);
+
 // "1210 +- 35", "45.12 +- 0.31": the value to the sigma's second significant digit.
 std::string withSigma(double value, double sigma);
 

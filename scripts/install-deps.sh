@@ -19,6 +19,8 @@ packages=(
   # drivers/: GPIO data-ready lines through libgpiod 1.6 (v1 API); can-utils for candump/cansend (logs to
   # replay, feeding vcan in the VM test).
   libgpiod-dev can-utils
+  # tests/openvins reads the OpenVINS intrinsics file with OpenCV's cv::FileStorage, as OpenVINS does.
+  libopencv-core-dev
   # scripts/fuzz.sh: clang with the libFuzzer, ASan and UBSan runtimes.
   clang libclang-rt-14-dev
 )

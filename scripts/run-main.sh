@@ -10,7 +10,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$root/scripts/install-deps.sh"
-"$root/scripts/build.sh" imucal imucald imucal-sim-pub imucal-cal-check
+# Every program the steps below start, daemon_e2e.sh's among them.
+"$root/scripts/build.sh" imucal imucald imucal-sim-pub imucal-cal-check imucal-log-replay
 build="${IMUCAL_BUILD_DIR:-$root/build}"
 imucal="$build/cli/imucal"
 out="$root/out"

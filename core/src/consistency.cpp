@@ -1,5 +1,6 @@
 #include "imucal/core/consistency.hpp"
 
+#include <cmath>
 #include <sstream>
 
 namespace imucal {
@@ -24,6 +25,15 @@ std::vector<std::string> inconsistencies(const CalibrationResult& result, const 
          "unit or clock, or a disturbed magnetometer)";
     out.push_back(m.str());
   }
+  // A variance that went negative or overflowed promises nothing, whatever the innovations said.
+  std::string not_finite;
+  for (Eigen::Index j = 0; j < result.estimate.size() && j < result.sigma.size(); ++j)
+    if (!std::isfinite(result.estimate(j)) || !std::isfinite(result.sigma(j)))
+      not_finite += (not_finite.empty() ? "" : ", ") +
+                    (static_cast<std::size_t>(j) < result.names.size() ? result.names[static_cast<std::size_t>(j)]
+                                                                       : std::to_string(j));
+  if (!not_finite.empty())
+    out.push_back("the estimate or sigma of " + not_finite + " is not a finite number (the filter's arithmetic diverged)");
   return out;
 }
 

@@ -198,6 +198,9 @@ imucal::calibration_t LcmNode::toMessage(const SensorReport& r, std::int64_t uti
   const StoredCalibration& c = *r.calibration;
   m.calibrated_utime = utimeAfter(c.utime_s);
   m.model = c.model;
+  // A refused session keeps the last accepted calibration's values; the reason must still reach the user.
+  if (r.state == CalibrationState::Failed && !r.failure.empty())
+    m.model = r.failure + " (the values are the last accepted calibration's: " + c.model + ")";
   m.num_params = static_cast<int32_t>(c.names.size());
   m.param_names.clear();
   for (const std::string& name : c.names) m.param_names.push_back(nameWithSiUnit(name));
@@ -334,7 +337,7 @@ void LcmNode::publishProgress(std::int64_t utime) {
     m.phase_time_s = p->phase_time;
     m.turned_deg = p->turned * 180.0 / 3.14159265358979323846;
     for (int i = 0; i < 3; ++i) m.turn_axis[i] = p->turn_axis(i);
-    m.hint = progressHint(*p, service_.sessionConfig());
+    m.hint = progressHint(*p, service_.sessionConfig(), report.nothing_left);
     m.last_rejection = p->last_rejection;
     m.rejected = static_cast<std::int32_t>(p->rejected);
     m.advice = report.advice;

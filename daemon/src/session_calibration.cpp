@@ -141,13 +141,16 @@ SessionOutcome calibrateSession(const SessionInput& in) {
     const double heading_rate = filter.measurements.heading && span > 0.0 ? static_cast<double>(heading.size()) / span : 0.0;
     FilterConfig plan = filter;
     plan.noise = result.noise_used;  // the noise the session ran with, measured on its stills
-    out.advice = adviceText(planNextMotion(result.names, result.covariance, result.prior_sigma, plan, plan.filter_rate,
-                                           heading_rate));
+    const MotionAdvice advice =
+        planNextMotion(result.names, result.covariance, result.prior_sigma, plan, plan.filter_rate, heading_rate);
+    out.advice = adviceText(advice);
+    out.nothing_left = advice.unknown.empty();
   } catch (const std::exception&) {
     out.advice.clear();  // a motion the planner cannot judge must not cost the calibration
   }
   if (const std::vector<std::string> problems = inconsistencies(result); !problems.empty()) {
     out.failure = "refused: the model does not describe this session: " + problems.front();
+    out.nothing_left = false;
     return out;
   }
   StoredCalibration c;

@@ -42,7 +42,7 @@ SessionProgress SessionDetector::progress() const {
   return p;
 }
 
-std::string progressHint(const SessionProgress& p, const SessionDetectorConfig& c) {
+std::string progressHint(const SessionProgress& p, const SessionDetectorConfig& c, bool nothing_left) {
   std::ostringstream out;
   out.precision(1);
   out << std::fixed;
@@ -54,6 +54,7 @@ std::string progressHint(const SessionProgress& p, const SessionDetectorConfig& 
       if (p.phase_time < c.min_still) {
         out << "hold still: " << p.phase_time << " of " << c.min_still << " s";
       } else {
+        if (nothing_left) out << "calibrated; to refresh it, ";
         out << "turn it once about the vertical, at least " << std::lround(c.min_turn / kDeg) << " deg within "
             << c.max_turn_time << " s";
       }

@@ -3,6 +3,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 namespace imucal::io {
 
@@ -21,12 +23,15 @@ json vec(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 json matrixEntry(const Mat3& value, const Mat3& sigma) { return {{"value", rows(value)}, {"sigma", rows(sigma)}}; }
 json vectorEntry(const Vec3& value, const Vec3& sigma) { return {{"value", vec(value)}, {"sigma", vec(sigma)}}; }
 
-std::vector<std::string> unconverged(const CalibrationResult& r) {
-  std::vector<std::string> out;
-  for (std::size_t j = 0; j < r.names.size(); ++j)
-    if (j >= r.converged.size() || !r.converged[j]) out.push_back(r.names[j]);
-  return out;
+std::string commaList(const std::vector<std::string>& names) {
+  std::string list;
+  for (const auto& name : names) list += (list.empty() ? "" : ", ") + name;
+  return list;
 }
+
+// A zero walk is "not measured" (no still run of 60 s, none configured), not "the bias never drifts".
+constexpr const char* kWalkNotMeasured = "not measured (no still run of 60 s) nor configured: set it";
+constexpr const char* kAtPriorNote = "not converged, so written at their prior mean with the prior's sigma";
 
 void emitMatrix(YAML::Emitter& out, const std::string& key, const Mat3& m) {
   out << YAML::Key << key << YAML::Value << YAML::BeginSeq;
@@ -44,7 +49,7 @@ void emitVector(YAML::Emitter& out, const std::string& key, const Vec3& v) {
 
 }  // namespace
 
-json intrinsicsJson(const CalibrationResult& result, const IntrinsicsWithSigma& in) {
+json intrinsicsJson(const CalibrationResult& result, const ExportedParams& exported, const IntrinsicsWithSigma& in) {
   const StandardIntrinsics& v = in.value;
   const StandardIntrinsics& s = in.sigma;
   json j;
@@ -68,35 +73,34 @@ json intrinsicsJson(const CalibrationResult& result, const IntrinsicsWithSigma& 
   };
   j["imu_tk"] = {{"accelerometer", tk(v.imu_tk_accel, s.imu_tk_accel)}, {"gyroscope", tk(v.imu_tk_gyro, s.imu_tk_gyro)}};
   // The parameters' correlations: the matrices' sigmas alone lose how their entries move together.
-  const Eigen::Index n = result.covariance.rows();
+  const MatX& cov = exported.covariance;
+  const Eigen::Index n = cov.rows();
   json corr = json::array();
   for (Eigen::Index a = 0; a < n; ++a) {
     json row = json::array();
     for (Eigen::Index b = 0; b < n; ++b) {
-      const double d = std::sqrt(result.covariance(a, a) * result.covariance(b, b));
-      row.push_back(d > 0.0 ? result.covariance(a, b) / d : (a == b ? 1.0 : 0.0));
+      const double d = std::sqrt(cov(a, a) * cov(b, b));
+      row.push_back(d > 0.0 ? cov(a, b) / d : (a == b ? 1.0 : 0.0));
     }
     corr.push_back(row);
   }
   j["parameters"] = result.names;
   j["correlation"] = corr;
   // A value the data did not determine is its prior: usable, but only as well as the datasheet.
-  j["not_converged"] = unconverged(result);
+  j["not_converged"] = exported.at_prior;
+  j["not_converged_values"] = kAtPriorNote;
   return j;
 }
 
-std::string kalibrImuYaml(const CalibrationResult& result, const IntrinsicsWithSigma& in, double rate_hz) {
+std::string kalibrImuYaml(const CalibrationResult& result, const ExportedParams& exported, const IntrinsicsWithSigma& in,
+                          double rate_hz) {
   const StandardIntrinsics& v = in.value;
   const NoiseConfig& n = result.noise_used;
   YAML::Emitter out;
   out.SetDoublePrecision(12);
   out << YAML::Comment("imucal calibration as Kalibr IMU intrinsics (scale-misalignment); SI units") << YAML::Newline;
-  const std::vector<std::string> open = unconverged(result);
-  if (!open.empty()) {
-    std::string list;
-    for (const auto& name : open) list += (list.empty() ? "" : ", ") + name;
-    out << YAML::Comment("not converged (their prior): " + list) << YAML::Newline;
-  }
+  if (!exported.at_prior.empty())
+    out << YAML::Comment(std::string(kAtPriorNote) + ": " + commaList(exported.at_prior)) << YAML::Newline;
   out << YAML::BeginMap << YAML::Key << "imu0" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "T_i_b" << YAML::Value << YAML::BeginSeq;
   for (int r = 0; r < 4; ++r) {
@@ -107,8 +111,10 @@ std::string kalibrImuYaml(const CalibrationResult& result, const IntrinsicsWithS
   out << YAML::EndSeq;
   out << YAML::Key << "accelerometer_noise_density" << YAML::Value << n.accel_white;
   out << YAML::Key << "accelerometer_random_walk" << YAML::Value << n.accel_bias_walk;
+  if (!(n.accel_bias_walk > 0.0)) out << YAML::Comment(kWalkNotMeasured);
   out << YAML::Key << "gyroscope_noise_density" << YAML::Value << n.gyro_white;
   out << YAML::Key << "gyroscope_random_walk" << YAML::Value << n.gyro_bias_walk;
+  if (!(n.gyro_bias_walk > 0.0)) out << YAML::Comment(kWalkNotMeasured);
   out << YAML::Key << "model" << YAML::Value << "scale-misalignment";
   out << YAML::Key << "rostopic" << YAML::Value << "/imu0";
   out << YAML::Key << "time_offset" << YAML::Value << 0.0;
@@ -126,6 +132,64 @@ std::string kalibrImuYaml(const CalibrationResult& result, const IntrinsicsWithS
   emitVector(out, "gyroscope_bias", v.gyro_bias);
   out << YAML::EndMap << YAML::EndMap;
   return std::string(out.c_str()) + "\n";
+}
+
+namespace {
+
+// Every digit a double needs to come back unchanged through strtod (OpenCV's reader).
+std::string exact(double v) {
+  std::ostringstream s;
+  s << std::setprecision(17) << v;
+  std::string text = s.str();
+  // "1" would read back as an integer node; OpenCV converts it, but a real number says what it is.
+  if (text.find_first_of(".eE") == std::string::npos && text.find_first_of("ni") == std::string::npos) text += ".0";
+  return text;
+}
+
+void openVinsMatrix(std::ostringstream& out, const std::string& key, const Mat3& m) {
+  out << "  " << key << ":\n";
+  for (int r = 0; r < 3; ++r)
+    out << "    - [ " << exact(m(r, 0)) << ", " << exact(m(r, 1)) << ", " << exact(m(r, 2)) << " ]\n";
+}
+
+}  // namespace
+
+std::string openVinsImuYaml(const CalibrationResult& result, const ExportedParams& exported,
+                            const IntrinsicsWithSigma& in, double rate_hz) {
+  const StandardIntrinsics& v = in.value;
+  const NoiseConfig& n = result.noise_used;
+  std::ostringstream out;
+  // OpenCV's cv::FileStorage refuses a YAML file without this first line ("Input file is invalid").
+  out << "%YAML:1.0\n";
+  out << "# imucal calibration as OpenVINS IMU intrinsics (kalibr_imu_chain.yaml), SI units. OpenVINS's kalibr model:\n"
+         "#   w_m = Tw R_IMUtoGYRO w + Tg a + b_g,  a_m = Ta R_IMUtoACC a + b_a  (IMU frame = the accelerometer's)\n";
+  if (!exported.at_prior.empty()) out << "# " << kAtPriorNote << ": " << commaList(exported.at_prior) << "\n";
+  out << "# OpenVINS estimates the biases itself; imucal's: accelerometer [" << exact(v.accel_bias.x()) << ", "
+      << exact(v.accel_bias.y()) << ", " << exact(v.accel_bias.z()) << "] m/s^2, gyroscope [" << exact(v.gyro_bias.x())
+      << ", " << exact(v.gyro_bias.y()) << ", " << exact(v.gyro_bias.z()) << "] rad/s\n";
+  out << "\nimu0:\n";
+  out << "  T_i_b:\n";
+  for (int r = 0; r < 4; ++r) {
+    out << "    - [ ";
+    for (int c = 0; c < 4; ++c) out << (c > 0 ? ", " : "") << (r == c ? "1.0" : "0.0");
+    out << " ]\n";
+  }
+  const auto walk = [](double v, const char* unit) { return exact(v) + "  # " + (v > 0.0 ? unit : kWalkNotMeasured); };
+  out << "  accelerometer_noise_density: " << exact(n.accel_white) << "  # m/s^2/sqrt(Hz)\n";
+  out << "  accelerometer_random_walk: " << walk(n.accel_bias_walk, "m/s^3/sqrt(Hz)") << "\n";
+  out << "  gyroscope_noise_density: " << exact(n.gyro_white) << "  # rad/s/sqrt(Hz)\n";
+  out << "  gyroscope_random_walk: " << walk(n.gyro_bias_walk, "rad/s^2/sqrt(Hz)") << "\n";
+  out << "  rostopic: /imu0\n";
+  out << "  time_offset: 0.0\n";
+  out << "  update_rate: " << exact(rate_hz) << "\n";
+  out << "  model: \"kalibr\"\n";
+  openVinsMatrix(out, "Tw", v.kalibr.gyro_M);
+  openVinsMatrix(out, "R_IMUtoGYRO", v.kalibr.C_gyro_i);
+  openVinsMatrix(out, "Ta", v.kalibr.accel_M);
+  openVinsMatrix(out, "R_IMUtoACC", Mat3::Identity());
+  // Tg acts on the IMU-frame specific force: our G (Kalibr's A C_gyro_i).
+  openVinsMatrix(out, "Tg", v.g_sensitivity);
+  return out.str();
 }
 
 }  // namespace imucal::io

@@ -14,6 +14,11 @@ using nlohmann::json;
 
 // NaN has no JSON spelling; null says "no value" honestly instead of a made-up number.
 json numberOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+// Where a number is promised (an estimate, its sigma), a value that is not one says why instead; such a
+// result is refused (core/consistency.cpp), and `refused` lists it.
+json numberOrWhy(double v) {
+  return std::isfinite(v) ? json(v) : json("not a finite number: the filter's arithmetic diverged (see refused)");
+}
 
 void checkSizes(const CalibrationResult& r) {
   const auto n = static_cast<Eigen::Index>(r.names.size());
@@ -32,11 +37,11 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
     const auto k = static_cast<Eigen::Index>(i);
     const ParamUnit u = paramUnit(result.names[i]);
     json p = {{"unit", u.human},
-              {"value", numberOrNull(result.estimate(k) / u.factor)},
-              {"sigma", numberOrNull(result.sigma(k) / u.factor)},
+              {"value", numberOrWhy(result.estimate(k) / u.factor)},
+              {"sigma", numberOrWhy(result.sigma(k) / u.factor)},
               {"si_unit", u.si},
-              {"value_si", numberOrNull(result.estimate(k))},
-              {"sigma_si", numberOrNull(result.sigma(k))},
+              {"value_si", numberOrWhy(result.estimate(k))},
+              {"sigma_si", numberOrWhy(result.sigma(k))},
               {"converged", static_cast<bool>(result.converged[i])},
               {"not_converged_reason", i < result.not_converged_reason.size() ? result.not_converged_reason[i] : ""},
               {"convergence_time_s",

@@ -4,9 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <functional>
+#include <iomanip>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <nlohmann/json.hpp>
 #include <yaml-cpp/yaml.h>
 
@@ -104,6 +108,116 @@ TEST(CliIntrinsics, ProtocolRecordingHoldsTheTruthInEveryForm) {
       for (int c = 0; c < 3; ++c)
         EXPECT_NEAR(k[section][key][r][c].as<double>(), expected(r, c), 1e-10 * (1.0 + std::abs(expected(r, c))))
             << section << "." << key;
+  }
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The paper's motion (a turn about z), calibrated with the full model: the z turn leaves the x and y scale
+// factors, most misalignments and the g-sensitivity at their prior. The gyro x scale's prior mean is set
+// far from zero (5000 ppm), so "at the prior" is told apart from "at zero" and from the filter's own value.
+TEST(CliIntrinsics, UnconvergedParametersAreExportedAtTheirPriorMean) {
+  testing::ScratchDir scratch;
+  const auto path = [&](const std::string& name) { return (scratch.path() / name).string(); };
+  ASSERT_EQ(testing::runImucal("simulate --config " + kConfigs + "paper-sim.yaml --seed 7 --out " + path("sim")).status, 0);
+  std::ofstream(path("full.yaml")) << "heading: {sigma_deg: 5}\n"
+                                      "noise: {vrw_m_per_s_per_sqrt_h: 0.15, arw_deg_per_sqrt_h: 0.3}\n"
+                                      "earth: {gravity_m_per_s2: 9.80665}\n"
+                                      "parameters: {gyro_scale_x_ppm: 5000}\n";
+  const CommandRun r = testing::runImucal("calibrate --imu " + path("sim/imu.csv") + " --heading " + path("sim/heading.csv") +
+                                          " --config " + path("full.yaml") + " --out " + path("r.json") + " --intrinsics " +
+                                          path("i.json") + " --kalibr " + path("k.yaml") + " --openvins " + path("o.yaml"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto result = nlohmann::json::parse(std::ifstream(path("r.json")));
+  const auto j = nlohmann::json::parse(std::ifstream(path("i.json")));
+  const auto& p = result["parameters"];
+  ASSERT_FALSE(p["gyro_scale_x"]["converged"].get<bool>()) << p["gyro_scale_x"].dump();
+  ASSERT_TRUE(p["gyro_bias_x"]["converged"].get<bool>()) << p["gyro_bias_x"].dump();
+
+  // The list of what is at its prior is the result's unconverged parameters, in every file.
+  std::vector<std::string> open;
+  for (const auto& name : result["parameter_order"])
+    if (!p[name.get<std::string>()]["converged"].get<bool>()) open.push_back(name.get<std::string>());
+  EXPECT_EQ(j["not_converged"].get<std::vector<std::string>>(), open);
+  for (const std::string file : {"k.yaml", "o.yaml"})
+    EXPECT_NE(readText(path(file)).find("written at their prior mean with the prior's sigma: " + open.front()), std::string::npos)
+        << file;
+
+  // Gyro x scale: the matrix's (0,0) is 1 + the prior mean with the prior's sigma, whatever the filter's
+  // linearization did with it (its unconverged misalignments sit at their zero prior too).
+  const double prior_sigma = p["gyro_scale_x"]["prior_sigma_si"].get<double>();
+  const Mat3 gyro = matrixOf(j["gyroscope"]["matrix"]["value"]), gyro_sigma = matrixOf(j["gyroscope"]["matrix"]["sigma"]);
+  EXPECT_NEAR(gyro(0, 0), 1.005, 1e-12);
+  EXPECT_NEAR(gyro_sigma(0, 0), prior_sigma, 1e-6 * prior_sigma);
+  // An unconverged misalignment: zero, with its prior's sigma.
+  ASSERT_FALSE(p["gyro_misalignment_xy"]["converged"].get<bool>());
+  EXPECT_EQ(gyro(0, 1), 0.0);
+  EXPECT_NEAR(gyro_sigma(0, 1), p["gyro_misalignment_xy"]["prior_sigma_si"].get<double>(), 1e-6 * gyro_sigma(0, 1));
+  // A converged one keeps the filter's estimate and sigma.
+  EXPECT_NEAR(j["gyroscope"]["bias_rad_per_s"]["value"][0].get<double>(), p["gyro_bias_x"]["value_si"].get<double>(), 1e-15);
+  EXPECT_NEAR(j["gyroscope"]["bias_rad_per_s"]["sigma"][0].get<double>(), p["gyro_bias_x"]["sigma_si"].get<double>(),
+              1e-6 * p["gyro_bias_x"]["sigma_si"].get<double>());
+  // At the prior, it correlates with nothing.
+  const auto& names = j["parameters"];
+  const auto index = [&](const std::string& name) {
+    for (std::size_t i = 0; i < names.size(); ++i)
+      if (names[i] == name) return i;
+    ADD_FAILURE() << name << " not in the parameters";
+    return std::size_t{0};
+  };
+  const std::size_t sx = index("gyro_scale_x");
+  for (std::size_t b = 0; b < names.size(); ++b)
+    if (b != sx) {
+      EXPECT_EQ(j["correlation"][sx][b].get<double>(), 0.0) << names[b];
+    }
+}
+
+// A run the filter refuses (every heading 5 s late) with every export asked for: exit 4 with the reason,
+// no intrinsics file written, a stale one from an earlier run named as such and left as it was.
+TEST(CliIntrinsics, RefusedRunExitsFourAndWritesNoIntrinsics) {
+  testing::ScratchDir scratch;
+  const auto path = [&](const std::string& name) { return (scratch.path() / name).string(); };
+  ASSERT_EQ(testing::runImucal("simulate --config " + kConfigs + "paper-sim.yaml --seed 5 --out " + path("sim")).status, 0);
+  {
+    std::ifstream in(path("sim/heading.csv"));
+    std::ofstream out(path("late.csv"));
+    std::string line;
+    std::getline(in, line);
+    out << line << '\n';
+    while (std::getline(in, line)) {
+      const auto comma = line.find(',');
+      out << std::setprecision(17) << std::stod(line.substr(0, comma)) + 5.0 << line.substr(comma) << '\n';
+    }
+  }
+  std::ofstream(path("stale.yaml")) << "earlier\n";
+  const CommandRun r = testing::runImucal("calibrate --imu " + path("sim/imu.csv") + " --heading " + path("late.csv") +
+                                          " --config " + kConfigs + "paper-calibrate.yaml --out " + path("r.json") +
+                                          " --intrinsics " + path("i.json") + " --kalibr " + path("stale.yaml") +
+                                          " --openvins " + path("o.yaml"));
+  EXPECT_EQ(r.status, 4) << r.output;
+  EXPECT_NE(r.output.find("imucal: refused: the model does not describe this recording"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("heading"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(path("i.json")));
+  EXPECT_FALSE(std::filesystem::exists(path("o.yaml")));
+  EXPECT_EQ(readText(path("stale.yaml")), "earlier\n");
+  EXPECT_NE(r.output.find("not written: " + path("i.json") + " (a refused result has no intrinsics to export)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("not written: " + path("stale.yaml") + " (a refused result has no intrinsics to export; the "
+                          "file there is from an earlier run)"),
+            std::string::npos)
+      << r.output;
+  // The result JSON is kept, marked refused, every estimate and sigma a number.
+  const auto json = nlohmann::json::parse(std::ifstream(path("r.json")));
+  ASSERT_FALSE(json["refused"].empty());
+  for (const auto& [name, p] : json["parameters"].items()) {
+    EXPECT_FALSE(p["converged"].get<bool>()) << name;
+    for (const char* key : {"value", "sigma", "value_si", "sigma_si"}) EXPECT_TRUE(p[key].is_number()) << name << " " << key;
   }
 }
 

@@ -66,5 +66,35 @@ TEST(CliWatchLine, ShowsTheRunningBiasesInHumanUnits) {
   EXPECT_EQ(withSigma(1.0, 0.0), "1 +- 0");
 }
 
+TEST(CliWatchLine, SaysTheSessionsResultInWords) {
+  const double deg_per_h = 3.14159265358979323846 / 180.0 / 3600.0, ug = 9.80665e-6;
+  imucal::calibration_t m{};
+  m.sensor_id = "imu0";
+  m.state = imucal::calibration_t::STATE_CONVERGED;
+  m.param_names = {"accel_bias_x [m/s^2]", "gyro_bias_x [rad/s]", "gyro_bias_z [rad/s]", "gyro_scale_z [1]"};
+  m.values = {45000.0 * ug, 1210.0 * deg_per_h, -300.4 * deg_per_h, 1e-3};
+  m.sigmas = {310.0 * ug, 35.0 * deg_per_h, 12.0 * deg_per_h, 1e-4};
+  m.converged = {1, 1, 1, 1};
+  m.num_params = 4;
+  EXPECT_EQ(resultLine(m), "imu0 | calibrated | gyro_bias [deg/h] x 1210 +- 35, z -300 +- 12 | accel_bias [ug] x 45000 +- 310");
+  m.state = imucal::calibration_t::STATE_PARTIAL;
+  m.converged = {1, 1, 0, 0};
+  EXPECT_EQ(resultLine(m), "imu0 | partial: more motion settles the rest | gyro_bias [deg/h] x 1210 +- 35, z -300 +- 12 | "
+                           "accel_bias [ug] x 45000 +- 310 | 2 of 4 not converged: gyro_bias_z, gyro_scale_z");
+  m.converged = {0, 0, 0, 0};
+  EXPECT_NE(resultLine(m).find("| 4 of 4 not converged: accel_bias_x, gyro_bias_x, gyro_bias_z, ..."), std::string::npos)
+      << resultLine(m);
+  m.state = imucal::calibration_t::STATE_FAILED;
+  m.model = "refused: the model does not describe this session: zero-velocity mean NIS is 40";
+  EXPECT_EQ(resultLine(m), "imu0 | refused: the model does not describe this session: zero-velocity mean NIS is 40");
+}
+
+TEST(CliWatchLine, FitsATerminalLineWithoutWrapping) {
+  EXPECT_EQ(fitToWidth("imu0 | hold still", 80), "imu0 | hold still");
+  EXPECT_EQ(fitToWidth("imu0 | hold still: 1.2 of 3.0 s", 16), "imu0 | hold s...");
+  EXPECT_EQ(fitToWidth("imu0 | hold still: 1.2 of 3.0 s", 16).size(), 16u);
+  EXPECT_EQ(fitToWidth("exactly", 7), "exactly");
+}
+
 }  // namespace
 }  // namespace imucal::cli

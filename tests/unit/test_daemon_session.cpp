@@ -221,6 +221,8 @@ TEST(DaemonSession, HintsSayWhatToDoNow) {
   EXPECT_EQ(progressHint(p, c), "hold still: 1.2 of 3.0 s");
   p.phase_time = 4.0;
   EXPECT_EQ(progressHint(p, c), "turn it once about the vertical, at least 300 deg within 30.0 s");
+  // After a session that left nothing to reveal the invitation is to refresh, not an open task.
+  EXPECT_EQ(progressHint(p, c, true), "calibrated; to refresh it, turn it once about the vertical, at least 300 deg within 30.0 s");
   p.phase = SessionPhase::Turning;
   p.turned = 210.2 * units::deg;
   EXPECT_EQ(progressHint(p, c), "keep turning: 210 of 300 deg");

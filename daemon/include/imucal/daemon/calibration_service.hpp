@@ -67,6 +67,7 @@ struct SensorReport {
   std::uint64_t heading_accepted = 0, heading_rejected = 0;
   MeasurementStats last_stats;
   std::string advice;             // what to do next, after the last session (see motion_planner.hpp)
+  bool nothing_left = false;      // the last session was accepted and left nothing to reveal
   std::vector<std::string> notes; // how the last session was calibrated when not as configured
 };
 

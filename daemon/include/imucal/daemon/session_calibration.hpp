@@ -21,6 +21,8 @@ struct SessionOutcome {
   // What to do next to reveal what this session left unknown (see motion_planner.hpp); empty when the
   // session gave no result to plan from.
   std::string advice;
+  // The planner found nothing left to reveal and the session was accepted: another session only refreshes.
+  bool nothing_left = false;
   // How the session was calibrated, when not as configured: the earlier calibration not carried because
   // this session contradicts it, the centre found moving (calibrated as free moves).
   std::vector<std::string> notes;

@@ -47,7 +47,9 @@ struct SessionProgress {
 };
 
 // What to do now, in words a person can follow while holding the device, under the detector's thresholds.
-std::string progressHint(const SessionProgress& progress, const SessionDetectorConfig& config);
+// nothing_left: the last session was accepted and left nothing to reveal, so the invitation to turn says
+// that a turn now only refreshes the calibration (an instruction that does not contradict the advice).
+std::string progressHint(const SessionProgress& progress, const SessionDetectorConfig& config, bool nothing_left = false);
 
 struct Session {
   std::vector<ImuSample> imu;  // block means (SessionDetectorConfig::store_block)
