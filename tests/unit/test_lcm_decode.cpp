@@ -3,7 +3,10 @@
 // 1..bytes left, or an array count beyond the bytes left is refused, never thrown or allocated for.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <climits>
+#include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include "imucal/lcm_decode.hpp"
@@ -19,9 +22,14 @@ std::vector<std::uint8_t> encoded(const Msg& m) {
   return b;
 }
 
+// Big-endian, as LCM encodes. The range check is also what lets GCC's -O3 see the write in bounds (without
+// it, -Wstringop-overflow reports a write into a region of size 0 for a copied vector).
 void putInt32(std::vector<std::uint8_t>& b, std::size_t at, std::int32_t v) {
+  if (at > b.size() || b.size() - at < 4) throw std::out_of_range("putInt32: offset beyond the message");
   const auto u = static_cast<std::uint32_t>(v);
-  for (int i = 0; i < 4; ++i) b[at + static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(u >> (24 - 8 * i));
+  const std::array<std::uint8_t, 4> bytes{static_cast<std::uint8_t>(u >> 24), static_cast<std::uint8_t>(u >> 16),
+                                          static_cast<std::uint8_t>(u >> 8), static_cast<std::uint8_t>(u)};
+  std::memcpy(b.data() + at, bytes.data(), bytes.size());
 }
 
 imucal::calibration_t calibration() {
