@@ -146,12 +146,34 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
 // A pass that moves no estimate by more than this many sigma ends the refinement.
 constexpr double kSettledStep = 0.05;
 
+// A later pass whose innovations fit worse than the best pass so far (its -2 log-likelihood larger by more
+// than this, plus kWorseFitPerUpdate per scalar update: chance moves a settled run's fit by far less)
+// linearized about a worse point: its step is not taken, a shorter one from the best point is tried.
+constexpr double kWorseFit = 2.0;
+constexpr double kWorseFitPerUpdate = 0.005;
+// Halvings in a row from the best point before the refinement stops there.
+constexpr int kMaxBacktracks = 4;
+
 struct PassesOutput {
-  PassOutput pass;  // the last
-  VecX step, previous_step;  // each pass's step per parameter in sigma, the last two
+  PassOutput pass;  // the best (the last, unless a later one fit worse)
+  VecX step, previous_step;  // the kept pass's step per parameter in sigma, and the one before it
   bool settled = false;
   int passes_run = 0;
+  // Why the refinement kept an earlier pass ("" when it kept the last): said as a warning.
+  std::string kept_earlier;
 };
+
+// The scalar updates of a pass, for kWorseFitPerUpdate.
+double scalarUpdates(const MeasurementStats& s) {
+  return 3.0 * static_cast<double>(s.zero_velocity_updates + s.position_updates) + static_cast<double>(s.heading_updates);
+}
+
+// Whether pass `next` fit worse than `best` beyond chance (a pass that turned non-finite fits worst).
+bool fitsWorse(const PassOutput& next, const PassOutput& best) {
+  if (!std::isfinite(next.log_likelihood)) return true;
+  const double tolerance = kWorseFit + kWorseFitPerUpdate * scalarUpdates(best.stats);
+  return -2.0 * next.log_likelihood > -2.0 * best.log_likelihood + tolerance;
+}
 
 // Every pass keeps the original prior: later passes only move the point the model is linearized at, so a
 // direction the data cannot see stays at its prior however many passes run.
@@ -165,16 +187,44 @@ PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<Head
   out.step = VecX::Zero(layout.paramCount());
   out.previous_step = out.step;
   out.settled = config.passes == 1;
+  // The point the kept pass linearized about, and how many shorter steps from it failed in a row.
+  VecX best_point = params;
+  int backtracks = 0, kept = 0;
   for (int i = 0; i < config.passes; ++i) {
     // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
     // about the dead-reckoned trajectory of the previous pass's parameters.
     const bool feedback = i == 0 || !config.open_loop_refinement;
-    out.pass = runPass(imu, heading, still, held, per_step, config, params, i == 0 ? VecX() : prior_mean, feedback,
-                       options.keep_innovations, options.max_history_epochs, probe_free_steps);
+    PassOutput pass;
+    try {
+      pass = runPass(imu, heading, still, held, per_step, config, params, i == 0 ? VecX() : prior_mean, feedback,
+                     options.keep_innovations, options.max_history_epochs, probe_free_steps);
+    } catch (const NonFiniteResult&) {
+      if (i == 0) throw;  // the input itself (see checkFinite); a later pass only linearized about a bad point
+      pass.log_likelihood = -std::numeric_limits<double>::infinity();
+    }
+    out.passes_run = i + 1;
+    // A pass that fit worse than the kept one says its starting point was worse: the step that led there is
+    // not taken; half of it, from the kept pass's point, is tried next (a trust region on the passes).
+    if (i > 0 && fitsWorse(pass, out.pass)) {
+      if (++backtracks > kMaxBacktracks) {
+        std::ostringstream why;
+        why << "passes: the refinement kept pass " << kept << " of " << out.passes_run << ": "
+            << backtracks << " steps from it in a row, down to 1/" << (1 << kMaxBacktracks)
+            << " of its step, fit the data worse (-2 log-likelihood " << -2.0 * out.pass.log_likelihood << ", then "
+            << -2.0 * pass.log_likelihood << ")";
+        out.kept_earlier = why.str();
+        break;
+      }
+      params = best_point + 0.5 * (params - best_point);
+      continue;
+    }
+    backtracks = 0;
+    kept = i + 1;
+    best_point = params;
+    out.pass = std::move(pass);
     const VecX sigma = paramSigmas(out.pass.P, layout);
     out.previous_step = out.step;
     out.step = (out.pass.params - params).cwiseQuotient(sigma);
-    out.passes_run = i + 1;
     // A step that reverses the previous one overshot the point where a pass returns what it started from;
     // if it is not much shorter, taking it whole can swing about that point for ever, half of it closes in.
     const bool overshot = i > 0 && out.step.dot(out.previous_step) < 0.0 && out.step.norm() > 0.5 * out.previous_step.norm();
@@ -184,6 +234,11 @@ PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<Head
       out.settled = true;
       break;
     }
+  }
+  if (out.kept_earlier.empty() && kept < out.passes_run) {
+    std::ostringstream why;
+    why << "passes: the refinement kept pass " << kept << " of " << out.passes_run << ": the passes after it fit the data worse";
+    out.kept_earlier = why.str();
   }
   return out;
 }
@@ -263,7 +318,8 @@ void inflateForConsistency(CalibrationResult& result) {
 // bracket the point the passes lead to, so at most the last step is left; steps the same way shrinking by
 // a ratio r leave step / (1 - r) (r capped at 0.95). A converged parameter with more than half a sigma to
 // go is not converged: its estimate is not yet where the data put it.
-void markUnsettled(CalibrationResult& result, const VecX& step, const VecX& previous_step) {
+// ran_all: the passes ran out; otherwise the refinement stopped at a pass no shorter step improved on.
+void markUnsettled(CalibrationResult& result, const VecX& step, const VecX& previous_step, bool ran_all) {
   std::vector<std::string> moving;
   for (Eigen::Index j = 0; j < step.size(); ++j) {
     const auto k = static_cast<std::size_t>(j);
@@ -281,8 +337,13 @@ void markUnsettled(CalibrationResult& result, const VecX& step, const VecX& prev
     moving.push_back(result.names[k]);
   }
   std::ostringstream msg;
-  msg << "passes: all " << result.passes_run << " ran and the estimates still moved (last step up to " << step.cwiseAbs().maxCoeff()
-      << " sigma); raise `passes`";
+  if (ran_all) {
+    msg << "passes: all " << result.passes_run << " ran and the estimates still moved (last step up to "
+        << step.cwiseAbs().maxCoeff() << " sigma); raise `passes`";
+  } else {
+    msg << "passes: the refinement stopped after " << result.passes_run << " with the kept pass's step still up to "
+        << step.cwiseAbs().maxCoeff() << " sigma (no shorter step fit better)";
+  }
   if (!moving.empty()) {
     msg << "; not called converged:";
     for (std::size_t k = 0; k < moving.size(); ++k) msg << (k == 0 ? " " : ", ") << moving[k];
@@ -401,6 +462,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   const VecX& previous_step = passes.previous_step;
   const bool settled = passes.settled;
   result.passes_run = passes.passes_run;
+  if (!passes.kept_earlier.empty()) result.warnings.push_back(passes.kept_earlier);
 
   result.estimate = pass.params;
   result.sigma = paramSigmas(pass.P, layout);
@@ -414,7 +476,7 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   result.duration = span;
 
   markConverged(result, pass.P, layout, config.converged_sigma_ratio);
-  if (!settled) markUnsettled(result, step, previous_step);
+  if (!settled) markUnsettled(result, step, previous_step, result.passes_run == config.passes);
   const int n = layout.paramCount();
   constexpr int p0 = StateLayout::kParamStart;
   const VecX& inflation = result.parameter_inflation;
