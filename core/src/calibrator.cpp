@@ -190,6 +190,9 @@ PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<Head
   // The point the kept pass linearized about, and how many shorter steps from it failed in a row.
   VecX best_point = params;
   int backtracks = 0, kept = 0;
+  // The first pass feeds its corrections back as it goes, so its innovations are smaller than any open-loop
+  // pass's, whatever the point: open-loop refinements are compared among themselves, from the first.
+  const int first_compared = config.open_loop_refinement ? 1 : 0;
   for (int i = 0; i < config.passes; ++i) {
     // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
     // about the dead-reckoned trajectory of the previous pass's parameters.
@@ -199,13 +202,13 @@ PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<Head
       pass = runPass(imu, heading, still, held, per_step, config, params, i == 0 ? VecX() : prior_mean, feedback,
                      options.keep_innovations, options.max_history_epochs, probe_free_steps);
     } catch (const NonFiniteResult&) {
-      if (i == 0) throw;  // the input itself (see checkFinite); a later pass only linearized about a bad point
+      if (i <= first_compared) throw;  // nothing to fall back on; later, a pass only linearized about a bad point
       pass.log_likelihood = -std::numeric_limits<double>::infinity();
     }
     out.passes_run = i + 1;
     // A pass that fit worse than the kept one says its starting point was worse: the step that led there is
     // not taken; half of it, from the kept pass's point, is tried next (a trust region on the passes).
-    if (i > 0 && fitsWorse(pass, out.pass)) {
+    if (i > first_compared && fitsWorse(pass, out.pass)) {
       if (++backtracks > kMaxBacktracks) {
         std::ostringstream why;
         why << "passes: the refinement kept pass " << kept << " of " << out.passes_run << ": "
