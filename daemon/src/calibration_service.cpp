@@ -241,7 +241,7 @@ void CalibrationService::apply(const SessionOutcome& outcome) {
   SensorReport& report = reports_[outcome.sensor_id];
   report.last_stats = outcome.stats;
   report.advice = outcome.advice;
-  report.nothing_left = outcome.nothing_left && outcome.calibration.has_value();
+  report.nothing_left = outcome.nothing_left;
   report.notes = outcome.notes;
   report.persist_error = outcome.persist_error;
   if (!outcome.calibration) {
