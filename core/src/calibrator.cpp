@@ -15,6 +15,7 @@
 #include "imucal/core/filter_stepper.hpp"
 #include "imucal/core/heading_model.hpp"
 #include "imucal/core/initial_alignment.hpp"
+#include "imucal/core/input_checks.hpp"
 #include "imucal/core/lever_arm.hpp"
 #include "imucal/core/param_vector.hpp"
 #include "imucal/core/rotation.hpp"
@@ -404,6 +405,11 @@ void markConverged(CalibrationResult& result, const StateMat& P, const StateLayo
 CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const std::vector<HeadingSample>& raw_heading,
                                 const FilterConfig& given, const CalibrateOptions& options) {
   validate(recording, raw_heading);
+  if (const SampleJump jump = findImpossibleJump(recording); jump.found) {
+    std::ostringstream msg;
+    msg << "calibrate: IMU sample " << jump.index << " (t = " << recording[jump.index].t << " s): " << jump.what();
+    throw std::invalid_argument(msg.str());
+  }
   CalibrationResult result;
   // Level on a quiet stretch, wherever it is: the samples before it are not used.
   const AlignmentWindow window = findAlignmentWindow(recording, given.alignment_time);
@@ -411,14 +417,16 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
     std::ostringstream msg;
     msg << "calibrate: no still stretch to level on: the quietest " << given.alignment_time << " s (from t = "
         << recording[window.first].t << " s) has a gyro spread of " << window.gyro_spread / units::deg
-        << " deg/s and an accelerometer spread of " << window.accel_spread
-        << " m/s^2; hold the device still for a moment before the motion";
+        << " deg/s and an accelerometer spread of " << window.accel_spread << " m/s^2, reads "
+        << window.mean_rate / units::deg << " deg/s on the gyro and turns gravity by "
+        << window.accel_turn / units::deg << " deg; hold the device still for a moment before the motion";
     throw std::invalid_argument(msg.str());
   }
   if (window.first > 0) {
     std::ostringstream msg;
     msg << "alignment: the recording moves at its start; the calibration starts at its first quiet stretch, t = "
-        << recording[window.first].t << " s (" << window.first << " samples before it unused)";
+        << recording[window.first].t << " s (" << window.first << " samples, "
+        << recording[window.first].t - recording.front().t << " s, before it unused)";
     result.warnings.push_back(msg.str());
   }
   std::vector<ImuSample> trimmed;
@@ -427,6 +435,25 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   result.first_sample = window.first;
   if (imu.size() < 10) throw std::invalid_argument("calibrate: fewer than 10 IMU samples after the first quiet stretch");
   const std::vector<bool> still = detectStill(imu);
+  if (const GyroAxisCheck axes = checkGyroAxes(imu, still); axes.axes_wrong()) {
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "calibrate: the gyro's axes do not match the accelerometer's: over " << axes.moves
+        << " moves between stills, the gravity direction the gyro carries disagrees with the one the accelerometer "
+           "measures next by "
+        << axes.error_as_given / units::deg << " deg (median); " << axes.advice() << " and they agree within "
+        << axes.error_best / units::deg << " deg: fix gyro_axes (or accel_axes, if the accelerometer's are the wrong ones)";
+    throw std::invalid_argument(msg.str());
+  }
+  if (const SaturationCount rail = countSaturated(imu); rail.total() > 0) {
+    std::ostringstream msg;
+    msg << "input: samples at the sensor's rail or beyond its range (" << rail.channels() << ", between t = "
+        << rail.first_t << " and " << rail.last_t
+        << " s): their true value is unknown, so the filter leaves out what they add to attitude and velocity; "
+           "a wider range setting, or slower moves, keeps them";
+    result.warnings.push_back(msg.str());
+    result.saturated_samples = rail.samples;
+  }
   const double span = imu.back().t - imu.front().t;
   RunConfig run = runConfig(given, imu, still, span);
   const FilterConfig& config = run.config;
@@ -526,9 +553,28 @@ Halves calibrateHalves(const std::vector<ImuSample>& imu, const std::vector<Head
   return h;
 }
 
+// Halves that could not be compared give no second opinion: no parameter is called converged on the
+// whole's word alone.
+void uncompared(CalibrationResult& result, const std::string& why) {
+  std::vector<std::string> withdrawn;
+  for (std::size_t k = 0; k < result.converged.size(); ++k) {
+    if (!result.converged[k]) continue;
+    result.converged[k] = false;
+    result.convergence_time(static_cast<Eigen::Index>(k)) = std::numeric_limits<double>::quiet_NaN();
+    result.not_converged_reason[k] = "the recording's halves could not be compared, and nothing is called converged "
+                                     "on the whole's word alone";
+    withdrawn.push_back(result.names[k]);
+  }
+  std::string msg = "halves: not compared (" + why + ")";
+  if (!withdrawn.empty())
+    msg += "; nothing is called converged on the whole's word alone (" + std::to_string(withdrawn.size()) +
+           " parameters withdrawn)";
+  result.warnings.push_back(msg);
+}
+
 void compareHalves(const Halves& h, CalibrationResult& result) {
   if (!h.error.empty()) {
-    result.warnings.push_back("halves: not compared (" + h.error + ")");
+    uncompared(result, h.error);
     return;
   }
   const CalibrationResult& a = h.first;
@@ -539,8 +585,7 @@ void compareHalves(const Halves& h, CalibrationResult& result) {
   for (const auto& [half, name] : {std::pair{&a, "first"}, std::pair{&b, "second"}}) {
     const std::vector<std::string> why = inconsistencies(*half);
     if (why.empty()) continue;
-    result.warnings.push_back(std::string("halves: not compared (the ") + name + " half alone does not fit the model: " +
-                              why.front() + ")");
+    uncompared(result, std::string("the ") + name + " half alone does not fit the model: " + why.front());
     return;
   }
   result.halves_z = VecX::Zero(result.estimate.size());

@@ -65,6 +65,25 @@ void Eskf::applyUpdate(int channel, double y, double s) {
   if (increments_ != nullptr) increments_->add(last_raw_.t, gain_.segment(StateLayout::kParamStart, layout_.paramCount()), y, s);
 }
 
+void Eskf::addSaturatedIncrements(const ImuSample* raw, std::size_t count) {
+  Vec3 var_att = Vec3::Zero(), var_vel = Vec3::Zero();
+  bool any = false;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (raw[i].saturated == 0) continue;
+    any = true;
+    const double dt = raw[i].t - (i == 0 ? last_raw_.t : raw[i - 1].t);
+    for (int k = 0; k < 3; ++k) {
+      if ((raw[i].saturated & (kSaturatedAccel << k)) != 0) var_vel(k) += std::pow(raw[i].accel(k) * dt, 2);
+      if ((raw[i].saturated & (kSaturatedGyro << k)) != 0) var_att(k) += std::pow(raw[i].gyro(k) * dt, 2);
+    }
+  }
+  if (!any) return;
+  using L = StateLayout;
+  const Mat3 c_nb = nav_.q_nb.toRotationMatrix();
+  P_.block<3, 3>(L::kAtt, L::kAtt) += c_nb * var_att.asDiagonal() * c_nb.transpose();
+  P_.block<3, 3>(L::kVel, L::kVel) += c_nb * var_vel.asDiagonal() * c_nb.transpose();
+}
+
 ImuSample Eskf::corrected(const ImuSample& raw) const {
   using L = StateLayout;
   constexpr int p0 = L::kParamStart;
@@ -101,6 +120,7 @@ void Eskf::predict(const ImuSample* raw, std::size_t count) {
     dx_ += dt * fdx.col(0);
   }
   dynamics_.propagate(P_, lin, dt);
+  addSaturatedIncrements(raw, count);
   if (layout_.hasCentre() && feedback_) {
     // The nominal centre follows the same damped dynamics (Phi = I + F dt, as the covariance).
     const Vec3 d = centre_.head<3>(), u = centre_.tail<3>();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "imucal/core/param_vector.hpp"
 #include "imucal/core/rotation.hpp"
@@ -67,7 +68,13 @@ void correlateStartWithLeverArm(StateMat& P, const StateLayout& layout, const Ma
 AlignmentWindow findAlignmentWindow(const std::vector<ImuSample>& imu, double duration) {
   struct Window {
     std::size_t first;
-    double gyro, accel;
+    double gyro, accel, turn, rate;
+  };
+  // The mean accelerometer over samples [a, b).
+  const auto meanAccel = [&imu](std::size_t a, std::size_t b) {
+    Vec3 m = Vec3::Zero();
+    for (std::size_t i = a; i < b; ++i) m += imu[i].accel;
+    return m;
   };
   std::vector<Window> windows;
   std::size_t first = 0;
@@ -83,7 +90,12 @@ AlignmentWindow findAlignmentWindow(const std::vector<ImuSample>& imu, double du
     const double n = static_cast<double>(end - first);
     if (end - first < 2 || (end == imu.size() && imu[end - 1].t - imu[first].t < 0.9 * duration && !windows.empty())) break;
     const Eigen::Matrix<double, 6, 1> var = (sum_sq / n - (sum / n).cwiseAbs2()).cwiseMax(0.0);
-    windows.push_back({first, std::sqrt(var.tail<3>().maxCoeff()), std::sqrt(var.head<3>().maxCoeff())});
+    const std::size_t quarter = std::max<std::size_t>(1, (end - first) / 4);
+    const Vec3 head = meanAccel(first, first + quarter), tail = meanAccel(end - quarter, end);
+    double rate = 0.0;
+    for (std::size_t i = first; i < end; ++i) rate += imu[i].gyro.norm();
+    windows.push_back({first, std::sqrt(var.tail<3>().maxCoeff()), std::sqrt(var.head<3>().maxCoeff()),
+                       std::atan2(head.cross(tail).norm(), head.dot(tail)), rate / n});
     // The next window starts half a window later.
     std::size_t next = first;
     while (next < imu.size() && imu[next].t - imu[first].t < 0.5 * duration) ++next;
@@ -92,13 +104,24 @@ AlignmentWindow findAlignmentWindow(const std::vector<ImuSample>& imu, double du
   }
   AlignmentWindow out;
   if (windows.empty()) return out;
-  double quietest = windows.front().gyro;
-  for (const auto& w : windows) quietest = std::min(quietest, w.gyro);
-  for (const auto& w : windows) {
-    if (w.gyro > 1.5 * quietest) continue;
+  const auto take = [&out](const Window& w) {
     out.first = w.first;
     out.gyro_spread = w.gyro;
     out.accel_spread = w.accel;
+    out.accel_turn = w.turn;
+    out.mean_rate = w.rate;
+  };
+  double quietest = std::numeric_limits<double>::infinity();
+  for (const auto& w : windows)
+    if (w.turn <= kAlignmentMaxTurn) quietest = std::min(quietest, w.gyro);
+  if (!std::isfinite(quietest)) {
+    // Every window turns gravity: the device never held still. Said with the least turning one.
+    take(*std::min_element(windows.begin(), windows.end(), [](const Window& a, const Window& b) { return a.turn < b.turn; }));
+    return out;
+  }
+  for (const auto& w : windows) {
+    if (w.turn > kAlignmentMaxTurn || w.gyro > 1.5 * quietest) continue;
+    take(w);
     break;
   }
   out.usable = out.gyro_spread < 0.1 && out.accel_spread < 0.5;

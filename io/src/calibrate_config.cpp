@@ -110,6 +110,10 @@ ImuCsvFormat readImuFormat(YamlSection s) {
   f.check_units = s.boolean("check_units", f.check_units);
   readRetime(s, f.retime_uniformly, &f.retime_auto);
   f.max_gap = s.number("max_gap_s", f.max_gap, Range::positive());
+  // The datasheet's full-scale setting (0: not given).
+  f.accel_range = s.number("accel_range_g", f.accel_range / units::kStandardGravity, Range::nonNegative()) *
+                  units::kStandardGravity;
+  f.gyro_range = s.number("gyro_range_dps", f.gyro_range / deg, Range::nonNegative()) * deg;
   s.finish();
   return f;
 }

@@ -53,6 +53,8 @@ void emitImu(YAML::Emitter& out, const ImuCsvFormat& f) {
   emitBool(out, "check_units", f.check_units);
   emitText(out, "retime", f.retime_auto ? "auto" : (f.retime_uniformly ? "uniform" : "logged"));
   emitNumber(out, "max_gap_s", f.max_gap);
+  if (f.accel_range > 0.0) emitNumber(out, "accel_range_g", f.accel_range / units::kStandardGravity);
+  if (f.gyro_range > 0.0) emitNumber(out, "gyro_range_dps", f.gyro_range / units::deg);
   out << YAML::EndMap;
 }
 

@@ -20,7 +20,19 @@ std::int64_t utimeAfter(double seconds, std::int64_t origin_utime) {
 }
 
 ImuSample toCore(const StampedImu& sample, std::int64_t origin_utime) {
-  return ImuSample{secondsSince(sample.utime, origin_utime), sample.accel, sample.gyro};
+  ImuSample s{secondsSince(sample.utime, origin_utime), sample.accel, sample.gyro};
+  // The message says a triad saturated, not which axis: the axes share one full scale, so the one at the
+  // rail is the one read largest.
+  int axis = 0;
+  if ((sample.status & imu_sample_t::STATUS_ACCEL_SATURATED) != 0) {
+    sample.accel.cwiseAbs().maxCoeff(&axis);
+    s.saturated |= static_cast<unsigned char>(kSaturatedAccel << axis);
+  }
+  if ((sample.status & imu_sample_t::STATUS_GYRO_SATURATED) != 0) {
+    sample.gyro.cwiseAbs().maxCoeff(&axis);
+    s.saturated |= static_cast<unsigned char>(kSaturatedGyro << axis);
+  }
+  return s;
 }
 
 HeadingSample toCore(const heading_sample_t& message, std::int64_t origin_utime) {

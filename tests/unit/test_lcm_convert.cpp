@@ -43,6 +43,18 @@ TEST(LcmConvert, TimeBasesByHand) {
   EXPECT_DOUBLE_EQ(toCore(StampedImu{2'000'250, -1, 0, Vec3::Zero(), Vec3::Zero(), 0.0, 0}, 2'000'000).t, 250e-6);
 }
 
+// A driver's saturation bit names the triad; the engine needs the axis: the one at the rail reads largest.
+TEST(LcmConvert, ASaturatedTriadFlagsItsLargestAxis) {
+  StampedImu s;
+  s.accel = Vec3(0.3, 9.7, -0.2);
+  s.gyro = Vec3(0.1, 0.2, -4.363);  // -250 deg/s
+  EXPECT_EQ(toCore(s).saturated, 0);
+  s.status = imu_sample_t::STATUS_GYRO_SATURATED;
+  EXPECT_EQ(toCore(s).saturated, kSaturatedGyro << 2);
+  s.status |= imu_sample_t::STATUS_ACCEL_SATURATED;
+  EXPECT_EQ(toCore(s).saturated, (kSaturatedGyro << 2) | (kSaturatedAccel << 1));
+}
+
 TEST(LcmConvert, BatchWithSampleStampsRoundTripsThroughItsBytes) {
   const std::vector<StampedImu> src = threeSamples();
   const std::vector<std::uint8_t> bytes = encode(toImuBatch(src, "icm42688@i2c-1:0x68"));

@@ -2,6 +2,7 @@
 // The calibration engine: runs the error-state filter over recorded IMU and heading samples (possibly
 // several passes, each re-linearized about the previous one) and reports estimates, 1-sigma, history and
 // convergence. Knows nothing about files or middleware.
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -69,6 +70,8 @@ struct CalibrationResult {
   // With free_moves and hold_turns: the recording's moves, each with its zero-velocity NIS and whether its
   // centre was found at rest (held); empty otherwise.
   std::vector<Move> moves;
+  // Samples flagged at their rail per channel (accel x, y, z, gyro x, y, z): see input_checks.hpp.
+  std::array<long, 6> saturated_samples{};
   int passes_run = 0;
   double duration = 0.0;
   // Of the final pass: the innovations' log-likelihood and, when asked for, the innovations themselves.

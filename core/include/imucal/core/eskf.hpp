@@ -100,6 +100,9 @@ class Eskf {
   double updateDeviceMinusCentre(int channel, int device_index, int centre_index, double predicted, double sigma);
   // Adds the gain times innovation to the error state and tells every observer of updates.
   void applyUpdate(int channel, double y, double s);
+  // A sample at its sensor's rail says only that the true value lies beyond it: the increment it adds to
+  // attitude (gyro) or velocity (accel) is taken as unknown, as large again as the value read.
+  void addSaturatedIncrements(const ImuSample* raw, std::size_t count);
   // Re-derives the sensor model, its inverse gains and the gravity used from params_.
   void refreshModel();
   // Rows of the centre's position / velocity pseudo-observation for a lever arm (see lever_arm.hpp).

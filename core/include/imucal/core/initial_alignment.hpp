@@ -22,11 +22,17 @@ struct AlignmentWindow {
   std::size_t first = 0;    // index of the window's first sample: the filter starts here
   double gyro_spread = 0.0; // largest per-axis standard deviation in the window, rad/s
   double accel_spread = 0.0;
+  // How far the accelerometer's direction turned from the window's first quarter to its last (rad), and the
+  // window's mean |gyro| (rad/s, bias included): a steady turn has little spread but turns gravity.
+  double accel_turn = 0.0;
+  double mean_rate = 0.0;
   bool usable = false;      // quiet enough to level on
 };
 // The earliest window of `duration` whose gyro spread is within 1.5x of the quietest window's (windows
-// every duration / 2). Usable when that spread is below 0.1 rad/s and the accelerometer's below 0.5 m/s^2:
-// a hand holding the device still, not a turn.
+// every duration / 2), among those whose gravity direction turned less than kAlignmentMaxTurn. Usable when
+// that spread is below 0.1 rad/s and the accelerometer's below 0.5 m/s^2: a hand holding the device still,
+// not a turn. With no window that holds gravity, the one that turned it least is returned, not usable.
+inline constexpr double kAlignmentMaxTurn = 3.0 * 3.14159265358979323846 / 180.0;  // rad
 AlignmentWindow findAlignmentWindow(const std::vector<ImuSample>& imu, double duration);
 
 // The IMU starts at C r from the centre: with the lever arm a state, an unknown lever arm is an unknown

@@ -17,7 +17,12 @@ struct ImuSample {
   double t = 0.0;
   Vec3 accel = Vec3::Zero();
   Vec3 gyro = Vec3::Zero();
+  // Channels read at the sensor's rail or beyond its configured range (kSaturatedAccel << axis, kSaturatedGyro
+  // << axis): the true value is anywhere beyond it, so the filter takes the sample's increment as unknown.
+  unsigned char saturated = 0;
 };
+inline constexpr unsigned char kSaturatedAccel = 1;  // bits 0-2: accel x, y, z
+inline constexpr unsigned char kSaturatedGyro = 8;   // bits 3-5: gyro x, y, z
 
 // Heading of the body x axis, rad, clockwise from north (the yaw of the FRD body in NED), at time t (s).
 struct HeadingSample {

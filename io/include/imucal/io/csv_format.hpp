@@ -40,6 +40,10 @@ struct ImuCsvFormat {
   bool retime_uniformly = false;
   // `retime: auto`: let the data decide (see core/sample_clock.hpp); overrides retime_uniformly.
   bool retime_auto = false;
+  // The sensor's full-scale range, from its datasheet and register setting (0: not given). A reading at or
+  // beyond it is flagged saturated (ImuSample::saturated), as is a raw count at a 16-bit register's end.
+  double accel_range = 0.0;  // m/s^2
+  double gyro_range = 0.0;   // rad/s
   // A longer step between samples is a hole in the recording: refused (see timing_checks.hpp).
   double max_gap = 1.0;  // s
 };
