@@ -21,6 +21,7 @@
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/run_config.hpp"
 #include "imucal/core/sample_clock.hpp"
+#include "imucal/core/start_point.hpp"
 #include "imucal/core/static_detector.hpp"
 #include "imucal/core/units.hpp"
 
@@ -181,9 +182,11 @@ bool fitsWorse(const PassOutput& next, const PassOutput& best) {
 PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
                        const std::vector<bool>& still, const std::vector<bool>& held, std::size_t per_step,
                        const FilterConfig& config, const StateLayout& layout, const VecX& prior_mean,
-                       const CalibrateOptions& options, bool probe_free_steps) {
+                       const VecX& start, bool start_fitted, const CalibrateOptions& options, bool probe_free_steps) {
   PassesOutput out;
-  VecX params = prior_mean;
+  // The first pass linearizes at the start (and centres its prior there: it only finds the point the
+  // refinement linearizes about); every later pass keeps the original prior.
+  VecX params = start;
   // Where the passes run out before they settle, the last two steps say how far the estimate still had to go.
   out.step = VecX::Zero(layout.paramCount());
   out.previous_step = out.step;
@@ -193,14 +196,17 @@ PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<Head
   int backtracks = 0, kept = 0;
   // The first pass feeds its corrections back as it goes, so its innovations are smaller than any open-loop
   // pass's, whatever the point: open-loop refinements are compared among themselves, from the first.
-  const int first_compared = config.open_loop_refinement ? 1 : 0;
+  // A start fitted from the stills is already near the answer: every pass linearizes open-loop about it
+  // with the original prior (no first pass that feeds back from the prior mean).
+  const bool from_start = start_fitted && config.open_loop_refinement;
+  const int first_compared = config.open_loop_refinement && !from_start ? 1 : 0;
   for (int i = 0; i < config.passes; ++i) {
     // The first pass feeds its corrections back (its start may be far off); later passes re-linearize
     // about the dead-reckoned trajectory of the previous pass's parameters.
-    const bool feedback = i == 0 || !config.open_loop_refinement;
+    const bool feedback = (i == 0 && !from_start) || !config.open_loop_refinement;
     PassOutput pass;
     try {
-      pass = runPass(imu, heading, still, held, per_step, config, params, i == 0 ? VecX() : prior_mean, feedback,
+      pass = runPass(imu, heading, still, held, per_step, config, params, i == 0 && !from_start ? VecX() : prior_mean, feedback,
                      options.keep_innovations, options.max_history_epochs, probe_free_steps);
     } catch (const NonFiniteResult&) {
       if (i <= first_compared) throw;  // nothing to fall back on; later, a pass only linearized about a bad point
@@ -479,13 +485,36 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   // Under free moves, the moves whose centre stayed at rest hold zero velocity throughout: found with a
   // calibration that holds it at the stills only, then calibrated again (free_moves.hpp).
   const bool classify = m.free_moves && m.hold_turns && m.zero_velocity;
-  PassesOutput passes = runPasses(imu, heading, still, still, per_step, config, layout, prior_mean, options, classify);
+  // With one pass its prior is the result's: it must be the original, centred at the prior mean.
+  VecX start = prior_mean;
+  bool start_fitted = false;
+  if (config.passes > 1 && options.start_from_stills) {
+    const VecX prior_sigma =
+        priorCovariance(config, layout, 0.0).diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
+    const StartPoint found = findStartPoint(imu, still, config, layout, prior_mean, prior_sigma);
+    start = found.params;
+    start_fitted = found.poses > 0;
+    if (start_fitted) result.start = found.summary();
+  }
+  // From the start; where its open-loop passes do not settle (a state the stills say nothing of, such as
+  // the lever arm, far from its prior mean), also from the prior mean with a first pass that feeds back:
+  // the settled one is kept, else the one that fits the data better.
+  const auto passesFrom = [&](const std::vector<bool>& held, const VecX& from, bool fitted, bool probe) {
+    PassesOutput out = runPasses(imu, heading, still, held, per_step, config, layout, prior_mean, from, fitted, options, probe);
+    if (!fitted || out.settled) return std::pair{out, true};
+    PassesOutput plain = runPasses(imu, heading, still, held, per_step, config, layout, prior_mean, prior_mean, false, options, probe);
+    const bool better = plain.settled != out.settled ? plain.settled : plain.pass.log_likelihood > out.pass.log_likelihood;
+    return better ? std::pair{plain, false} : std::pair{out, true};
+  };
+  auto [passes, from_start] = passesFrom(still, start, start_fitted, classify);
   if (classify) {
     result.moves = findMoves(imu, still);
     classifyMoves(result.moves, passes.pass.free_step_nis);
-    if (std::any_of(result.moves.begin(), result.moves.end(), [](const Move& mv) { return mv.held; }))
-      passes = runPasses(imu, heading, still, heldSamples(still, result.moves), per_step, config, layout, prior_mean,
-                         options, false);
+    if (std::any_of(result.moves.begin(), result.moves.end(), [](const Move& mv) { return mv.held; })) {
+      // The calibration with the stills held is a start as good as any for the one with the held moves.
+      const bool fitted = start_fitted && from_start;
+      passes = passesFrom(heldSamples(still, result.moves), fitted ? passes.pass.params : prior_mean, fitted, false).first;
+    }
   }
   PassOutput& pass = passes.pass;
   const VecX& step = passes.step;

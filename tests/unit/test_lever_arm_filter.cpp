@@ -53,7 +53,7 @@ TEST(LeverArmFilter, EstimatedLeverArmIsRecoveredWithinItsSigma) {
     for (int i = 0; i < 2; ++i) {
       const double z = (est.estimate(lever + i) - r(i)) / est.sigma(lever + i);
       worst = std::max(worst, std::abs(z));
-      EXPECT_TRUE(est.converged[static_cast<std::size_t>(lever + i)]) << "axis " << i;
+      EXPECT_TRUE(est.converged[static_cast<std::size_t>(lever + i)]) << "axis " << i << ": " << est.not_converged_reason[static_cast<std::size_t>(lever + i)] << " z " << z << " passes " << est.passes_run;
       EXPECT_LT(est.sigma(lever + i), 0.01) << "axis " << i;
     }
     EXPECT_GT(est.sigma(lever + 2), 0.5 * f.model[ParamBlock::LeverArm].sigma);

@@ -70,6 +70,8 @@ struct CalibrationResult {
   // With free_moves and hold_turns: the recording's moves, each with its zero-velocity NIS and whether its
   // centre was found at rest (held); empty otherwise.
   std::vector<Move> moves;
+  // Where the first pass linearized (see start_point.hpp), in words; "" when at the prior mean.
+  std::string start;
   // Samples flagged at their rail per channel (accel x, y, z, gyro x, y, z): see input_checks.hpp.
   std::array<long, 6> saturated_samples{};
   int passes_run = 0;
@@ -100,6 +102,10 @@ struct CalibrateOptions {
   // Calibrate each half of the recording alone too, and call nothing converged whose halves disagree by
   // more than 4 combined sigma (costs about one more run).
   bool check_halves = false;
+  // Start where the stills say the answer is (see start_point.hpp): every pass linearizes open-loop about
+  // it and then the previous pass, with the original prior. Off: the first pass feeds back from the prior
+  // mean, which a sensor far from its nominal (raw counts) drags away.
+  bool start_from_stills = true;
   double min_halves_duration = 10.0;  // s; shorter recordings are not split
 };
 
