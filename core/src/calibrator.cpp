@@ -491,7 +491,8 @@ CalibrationResult calibrateOnce(const std::vector<ImuSample>& recording, const s
   if (config.passes > 1 && options.start_from_stills) {
     const VecX prior_sigma =
         priorCovariance(config, layout, 0.0).diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
-    const StartPoint found = findStartPoint(imu, still, config, layout, prior_mean, prior_sigma);
+    const StartPoint found = findStartPoint(imu, still, config.measurements.heading ? heading : std::vector<HeadingSample>{},
+                                            config, layout, prior_mean, prior_sigma);
     start = found.params;
     start_fitted = found.poses > 0;
     if (start_fitted) result.start = found.summary();

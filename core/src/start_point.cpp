@@ -18,6 +18,8 @@ constexpr double kPoseSigma = 0.002;  // fraction of g
 // The gravity direction carried through a move, trusted to about this much.
 constexpr double kDirectionSigma = 0.01;  // rad
 constexpr double kMaxMoveSeconds = 60.0;
+// A move whose gravity ends within this of where it started turned about the vertical.
+constexpr double kVerticalTurn = 10.0 * units::deg;
 constexpr int kMaxIterations = 30;
 
 struct Pose {
@@ -29,7 +31,40 @@ struct PoseMove {
   std::size_t before = 0, after = 0;  // pose indices
   std::vector<Vec3> rate;             // raw gyro, trapezoid mean over each sample interval
   std::vector<double> dt;
+  bool about_vertical = false;        // gravity ends where it started: the heading tells the turn
+  double heading_change = 0.0;        // rad, unwrapped, from the still before to the one after
+  double heading_sigma = 0.0;         // rad
 };
+
+double wrapped(double a) { return std::remainder(a, 2.0 * units::kPi); }
+
+// The heading's change from the still [a0, a1] to the still [b0, b1] (times), unwrapped along every
+// heading sample between: the mean of the unwrapped samples in the second still minus that in the first.
+// False when either still has no heading.
+bool headingChange(const std::vector<HeadingSample>& heading, double a0, double a1, double b0, double b1,
+                   double& change, int& samples) {
+  double unwrapped = 0.0, previous = 0.0, sum_a = 0.0, sum_b = 0.0;
+  int n_a = 0, n_b = 0;
+  bool started = false;
+  for (const HeadingSample& h : heading) {
+    if (h.t < a0) continue;
+    if (h.t > b1) break;
+    unwrapped = started ? unwrapped + wrapped(h.heading - previous) : h.heading;
+    previous = h.heading;
+    started = true;
+    if (h.t <= a1) {
+      sum_a += unwrapped;
+      ++n_a;
+    } else if (h.t >= b0) {
+      sum_b += unwrapped;
+      ++n_b;
+    }
+  }
+  if (n_a == 0 || n_b == 0) return false;
+  change = sum_b / n_b - sum_a / n_a;
+  samples = std::min(n_a, n_b);
+  return true;
+}
 
 using Residuals = std::function<VecX(const VecX& p)>;
 
@@ -103,11 +138,13 @@ std::string StartPoint::summary() const {
   std::ostringstream out;
   out.precision(3);
   out << "start: the first pass linearizes at a fit of the stills (" << poses << " poses, |f| within " << accel_rms
-      << " m/s^2 RMS of g; " << moves << " moves, gravity carried within " << gyro_rms / units::deg << " deg RMS)";
+      << " m/s^2 RMS of g; " << moves << " moves (" << moves_about_vertical
+      << " about the vertical, with the heading), carried within " << gyro_rms / units::deg << " deg RMS)";
   return out.str();
 }
 
-StartPoint findStartPoint(const std::vector<ImuSample>& imu, const std::vector<bool>& still, const FilterConfig& config,
+StartPoint findStartPoint(const std::vector<ImuSample>& imu, const std::vector<bool>& still,
+                          const std::vector<HeadingSample>& heading, const FilterConfig& config,
                           const StateLayout& layout, const VecX& prior_mean, const VecX& prior_sigma) {
   StartPoint out;
   out.params = prior_mean;
@@ -176,32 +213,51 @@ StartPoint findStartPoint(const std::vector<ImuSample>& imu, const std::vector<b
       m.rate.push_back(0.5 * (imu[i].gyro + imu[i - 1].gyro));
       m.dt.push_back(imu[i].t - imu[i - 1].t);
     }
-    if (!saturated) moves.push_back(std::move(m));
+    if (saturated) continue;
+    // A turn about the vertical, level enough for a heading (the body x axis below its max elevation).
+    const Vec3 down_before = -poses[k].f.normalized(), down_after = -poses[k + 1].f.normalized();
+    const double elevation = std::max(std::abs(std::asin(std::clamp(down_before.x(), -1.0, 1.0))),
+                                      std::abs(std::asin(std::clamp(down_after.x(), -1.0, 1.0))));
+    int samples = 0;
+    if (config.measurements.heading && std::acos(std::clamp(down_before.dot(down_after), -1.0, 1.0)) < kVerticalTurn &&
+        elevation < config.measurements.heading_max_elevation &&
+        headingChange(heading, imu[ranges[k].first].t, imu[a].t, imu[b].t, imu[ranges[k + 1].second].t, m.heading_change,
+                      samples)) {
+      m.about_vertical = true;
+      m.heading_sigma = std::max(kDirectionSigma, std::sqrt(2.0 / samples) * config.measurements.heading_sigma);
+    }
+    moves.push_back(std::move(m));
   }
   const std::vector<int> gyro_free = freeParams(layout, {ParamBlock::GyroScale, ParamBlock::GyroMisalignment});
   if (!moves.empty()) {
     const TriadErrors accel = toCalibrationParams(layout, p, config.model).imu.accel;
-    std::vector<Vec3> down(poses.size());
-    for (std::size_t k = 0; k < poses.size(); ++k) down[k] = accel.remove(poses[k].f).normalized();
+    std::vector<Vec3> up(poses.size());
+    for (std::size_t k = 0; k < poses.size(); ++k) up[k] = accel.remove(poses[k].f).normalized();
     const auto gyro_residuals = [&](const VecX& q) {
       const TriadErrors gyro = toCalibrationParams(layout, q, config.model).imu.gyro;
       const Mat3 gain_inv = gyro.gainMatrix().inverse();
-      VecX r(static_cast<Eigen::Index>(3 * moves.size()));
+      VecX r(static_cast<Eigen::Index>(4 * moves.size()));
       for (std::size_t k = 0; k < moves.size(); ++k) {
         const PoseMove& m = moves[k];
         Quat turned = Quat::Identity();  // body at the move's start <- body now
+        double yaw = 0.0;  // turned about the down direction the still before saw, rad (heading's sense)
         for (std::size_t i = 0; i < m.rate.size(); ++i) {
           const Vec3 angle = m.dt[i] * (gain_inv * (m.rate[i] - gyro.bias));
           const double a = angle.norm();
-          if (a > 0.0) turned = turned * Quat(Eigen::AngleAxisd(a, angle / a));
+          // up[] is specific force's direction: down is its negative.
+          if (m.about_vertical) yaw -= angle.dot(turned.toRotationMatrix().transpose() * up[m.before]);
+          if (a > 0.0) turned = (turned * Quat(Eigen::AngleAxisd(a, angle / a))).normalized();
         }
-        const Vec3 carried = turned.normalized().toRotationMatrix().transpose() * down[m.before];
-        r.segment<3>(static_cast<Eigen::Index>(3 * k)) = (carried - down[m.after]) / kDirectionSigma;
+        const Vec3 carried = turned.toRotationMatrix().transpose() * up[m.before];
+        r.segment<3>(static_cast<Eigen::Index>(4 * k)) = (carried - up[m.after]) / kDirectionSigma;
+        r(static_cast<Eigen::Index>(4 * k + 3)) = m.about_vertical ? (yaw - m.heading_change) / m.heading_sigma : 0.0;
       }
       return r;
     };
     p = fitWithPrior(gyro_residuals, p, gyro_free, prior_mean, prior_sigma);
     out.moves = static_cast<int>(moves.size());
+    out.moves_about_vertical =
+        static_cast<int>(std::count_if(moves.begin(), moves.end(), [](const PoseMove& m) { return m.about_vertical; }));
     out.gyro_rms = gyro_residuals(p).norm() * kDirectionSigma / std::sqrt(static_cast<double>(moves.size()));
   }
   out.params = p;

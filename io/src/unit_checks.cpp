@@ -12,6 +12,9 @@ namespace imucal::io {
 namespace {
 
 constexpr double kAccelTolerance = 0.2;   // a still or slowly turned device reads g within this fraction
+// In raw counts the datasheet's sensitivity may be far off the part's (half as much again): units still
+// differ by 9.8 or 1000.
+constexpr double kCountsAccelTolerance = 0.6;
 constexpr double kMaxGyroRadPerS = 35.0;  // ~2000 deg/s, the largest range of consumer gyros
 constexpr double kMinFieldUt = 5.0;       // Earth's field is 25..65 uT; board offsets can add a few hundred
 constexpr double kMaxFieldUt = 500.0;
@@ -38,10 +41,11 @@ void checkImuUnits(const std::string& path, const std::vector<ImuSample>& sample
   for (const auto& s : samples) norms.push_back(s.accel.norm());
   const double g = units::kStandardGravity;
   const double raw = median(norms) / unitFactor(format.accel_unit);  // in the unit the file claims
-  if (std::abs(raw * unitFactor(format.accel_unit) - g) > kAccelTolerance * g) {
+  const double tolerance = format.accel_counts.enabled ? kCountsAccelTolerance : kAccelTolerance;
+  if (std::abs(raw * unitFactor(format.accel_unit) - g) > tolerance * g) {
     std::string fits;
     for (AccelUnit u : {AccelUnit::MeterPerSecond2, AccelUnit::G, AccelUnit::MilliG})
-      if (std::abs(raw * unitFactor(u) - g) <= kAccelTolerance * g) fits = unitName(u);
+      if (std::abs(raw * unitFactor(u) - g) <= tolerance * g) fits = unitName(u);
     const std::string head = "median |accel| is " + fixed2(raw) + " " + unitName(format.accel_unit);
     if (!fits.empty())
       throwInputError(path, 0, head + ": the data looks like " + fits + ", but accel_unit is " +

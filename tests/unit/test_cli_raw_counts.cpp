@@ -12,6 +12,8 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
@@ -61,19 +63,59 @@ void writeCounts(const std::string& si_path, const std::string& counts_path) {
   }
 }
 
-// The protocol with sensitivities up to 26 % off the datasheet, simulated (seed 8) into `dir` and written as
+using Changes = std::vector<std::pair<std::string, std::string>>;
+
+// The protocol with `changes` made to its simulation config, simulated (`seed`) into `dir` and written as
 // counts.csv, with counts.yaml: the protocol's calibrate config plus the datasheet's counts.
-void simulateCounts(const std::filesystem::path& dir) {
+void simulateCounts(const std::filesystem::path& dir, const Changes& changes, int seed) {
   const auto path = [&](const std::string& name) { return (dir / name).string(); };
   std::string sim = readText(kConfigs + "protocol-sim.yaml");
-  sim = replaced(sim, "scale_ppm: [15000, -20000, 10000]", "scale_ppm: [250000, -200000, 150000]");
-  sim = replaced(sim, "scale_ppm: [-12000, 20000, 8000]", "scale_ppm: [-220000, 180000, 260000]");
+  for (const auto& [from, to] : changes) sim = replaced(sim, from, to);
   std::ofstream(path("sim.yaml")) << sim;
   std::ofstream(path("counts.yaml")) << readText(kConfigs + "protocol-calibrate.yaml")
                                      << "imu:\n  accel_unit: g\n  accel_counts: {offset: 32768, per_unit: 16384}\n"
                                         "  gyro_unit: deg/s\n  gyro_counts: {offset: 32768, per_unit: 131}\n";
-  ASSERT_EQ(imucal::testing::runImucal("simulate --config " + path("sim.yaml") + " --seed 8 --out " + path("sim")).status, 0);
+  ASSERT_EQ(imucal::testing::runImucal("simulate --config " + path("sim.yaml") + " --seed " + std::to_string(seed) +
+                                       " --out " + path("sim"))
+                .status,
+            0);
   writeCounts(path("sim/imu.csv"), path("counts.csv"));
+}
+
+// The protocol with sensitivities up to 26 % off the datasheet, simulated with seed 8.
+void simulateCounts(const std::filesystem::path& dir) {
+  simulateCounts(dir,
+                 {{"scale_ppm: [15000, -20000, 10000]", "scale_ppm: [250000, -200000, 150000]"},
+                  {"scale_ppm: [-12000, 20000, 8000]", "scale_ppm: [-220000, 180000, 260000]"}},
+                 8);
+}
+
+// Sensitivities 30-50 % off the datasheet, offsets of 0.1 g and 5 deg/s (the protocol's five turns about the
+// vertical are what the stills cannot show: the start reads them from the heading's change), seed 3 of the
+// study in the README.
+TEST(CliRawCounts, HalfAgainOffTheDatasheetWithLargeOffsetsReachesTheAnswer) {
+  imucal::testing::ScratchDir scratch;
+  const auto path = [&](const std::string& name) { return (scratch.path() / name).string(); };
+  simulateCounts(scratch.path(),
+                 {{"scale_ppm: [15000, -20000, 10000]", "scale_ppm: [500000, -300000, 400000]"},
+                  {"scale_ppm: [-12000, 20000, 8000]", "scale_ppm: [-300000, 500000, 350000]"},
+                  {"bias_mg: [45, -42, 48]", "bias_mg: [100, -100, 100]"},
+                  {"bias_deg_per_h: [1200, -1400, 1100]", "bias_deg_per_h: [18000, -18000, 18000]"}},
+                 3);
+  const auto r = imucal::testing::runImucal("calibrate --imu " + path("counts.csv") + " --heading " + path("sim/heading.csv") +
+                                            " --config " + path("counts.yaml") + " --out " + path("r.json"));
+  ASSERT_EQ(r.status, 0) << r.output;
+  const auto result = nlohmann::json::parse(std::ifstream(path("r.json")));
+  const auto truth = nlohmann::json::parse(std::ifstream(path("sim/truth.json")));
+  int converged = 0;
+  for (const auto& [name, p] : result["parameters"].items()) {
+    const double z = (p["value_si"].get<double>() - truth["parameters"][name]["value_si"].get<double>()) / p["sigma_si"].get<double>();
+    EXPECT_LT(std::abs(z), 4.0) << name;
+    converged += p["converged"].get<bool>();
+  }
+  // Gravity's magnitude, and with it the accelerometer z bias, is the config's own unknown.
+  EXPECT_GE(converged, 27);
+  EXPECT_LT(result["stats"]["velocity_nis_mean"].get<double>(), 2.0);
 }
 
 TEST(CliRawCounts, SensitivitiesFarFromTheDatasheetAreCalibratedFromCounts) {
@@ -155,7 +197,12 @@ TEST(CliRawCounts, AStartFromTheStillsReachesTheAnswerWhereThePriorMeanRanAway) 
     ASSERT_TRUE(r.status == 0 || r.status == 4) << r.output;
     const auto result = nlohmann::json::parse(std::ifstream(out));
     const double log_likelihood = result["log_likelihood"].get<double>();
-    EXPECT_GE(log_likelihood, previous) << passes << " passes";
+    // A pass may fit worse than the best by what chance gives a settled run (the refinement's own tolerance:
+    // 2 + 0.005 per scalar update in -2 log-likelihood), never by more.
+    const auto& st = result["stats"];
+    const double updates = 3.0 * (st["zero_velocity_updates"].get<double>() + st["position_updates"].get<double>()) +
+                           st["heading_updates"].get<double>();
+    EXPECT_GE(log_likelihood, previous - 0.5 * (2.0 + 0.005 * updates)) << passes << " passes";
     EXPECT_TRUE(std::isfinite(result["stats"]["velocity_nis_mean"].get<double>())) << passes;
     previous = log_likelihood;
   }

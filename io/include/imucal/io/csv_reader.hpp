@@ -24,7 +24,7 @@ std::vector<HeadingSample> readHeadingCsv(const std::string& path, const Heading
 std::vector<MagSample> readMagCsv(const std::string& path, const MagCsvFormat& format = {});
 
 // Wrong-unit checks on converted samples: the median |accel| must be within 20 % of g (the recording is
-// mostly still or slow) and, for gyro_unit rad/s, no |gyro| may exceed 35 rad/s (2000 deg/s, beyond any
+// mostly still or slow; 60 % for raw counts, whose datasheet sensitivity may be far off) and, for gyro_unit rad/s, no |gyro| may exceed 35 rad/s (2000 deg/s, beyond any
 // consumer gyro's range). Throws InputError naming `path` and the unit the data looks like.
 void checkImuUnits(const std::string& path, const std::vector<ImuSample>& samples,
                    const std::vector<long>& lines, const ImuCsvFormat& format);
