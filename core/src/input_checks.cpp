@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "imucal/core/static_detector.hpp"
 #include "imucal/core/units.hpp"
 
 namespace imucal {
@@ -218,13 +219,7 @@ std::string GyroAxisCheck::advice() const {
 
 GyroAxisCheck checkGyroAxes(const std::vector<ImuSample>& imu, const std::vector<bool>& still) {
   GyroAxisCheck out;
-  // Still runs as [first, last] sample ranges.
-  std::vector<std::pair<std::size_t, std::size_t>> runs;
-  for (std::size_t i = 0; i < imu.size() && i < still.size(); ++i) {
-    if (!still[i]) continue;
-    if (runs.empty() || runs.back().second + 1 != i) runs.push_back({i, i});
-    else runs.back().second = i;
-  }
+  const auto runs = stillRuns(still);
   std::vector<TiltMove> moves;
   for (std::size_t r = 0; r < runs.size() && moves.size() < kMaxMoves; ++r) {
     const auto [a0, a1] = runs[r];

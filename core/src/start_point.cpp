@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "imucal/core/param_vector.hpp"
+#include "imucal/core/static_detector.hpp"
 #include "imucal/core/units.hpp"
 
 namespace imucal {
@@ -150,12 +151,7 @@ StartPoint findStartPoint(const std::vector<ImuSample>& imu, const std::vector<b
   out.params = prior_mean;
   // The stills as poses (runs of still samples), with the index range of each.
   std::vector<Pose> poses;
-  std::vector<std::pair<std::size_t, std::size_t>> ranges;
-  for (std::size_t i = 0; i < imu.size() && i < still.size(); ++i) {
-    if (!still[i]) continue;
-    if (ranges.empty() || ranges.back().second + 1 != i) ranges.push_back({i, i});
-    else ranges.back().second = i;
-  }
+  const auto ranges = stillRuns(still);
   for (const auto& [a, b] : ranges) {
     Pose p;
     for (std::size_t i = a; i <= b; ++i) {

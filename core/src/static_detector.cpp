@@ -58,6 +58,16 @@ std::vector<Segment> segmentsOf(const std::vector<ImuSample>& imu, const std::ve
   return out;
 }
 
+std::vector<std::pair<std::size_t, std::size_t>> stillRuns(const std::vector<bool>& still) {
+  std::vector<std::pair<std::size_t, std::size_t>> runs;
+  for (std::size_t i = 0; i < still.size(); ++i) {
+    if (!still[i]) continue;
+    if (runs.empty() || runs.back().second + 1 != i) runs.push_back({i, i});
+    else runs.back().second = i;
+  }
+  return runs;
+}
+
 StillRunSeries longestStillRun(const std::vector<ImuSample>& imu, const std::vector<bool>& still) {
   StillRunSeries run;
   const Segment* longest = nullptr;

@@ -51,6 +51,7 @@ struct GyroAxisCheck {
   // "gyro x, y, z should read (-x, y, -z)": the flip or swap that makes them agree.
   std::string advice() const;
 };
+// still: per sample of imu (detectStill).
 GyroAxisCheck checkGyroAxes(const std::vector<ImuSample>& imu, const std::vector<bool>& still);
 
 }  // namespace imucal

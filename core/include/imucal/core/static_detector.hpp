@@ -2,6 +2,8 @@
 // Still/moving classification from the spread of accel and gyro over a centred window. Works on raw
 // samples: a constant bias does not change a spread.
 #include <array>
+#include <cstddef>
+#include <utility>
 #include <vector>
 
 #include "imucal/core/types.hpp"
@@ -43,6 +45,8 @@ struct Segment {
 };
 // Runs of equal verdicts as time intervals.
 std::vector<Segment> segmentsOf(const std::vector<ImuSample>& imu, const std::vector<bool>& still);
+// Runs of still samples as [first, last] index ranges, in order.
+std::vector<std::pair<std::size_t, std::size_t>> stillRuns(const std::vector<bool>& still);
 
 // The samples of the longest still run, one series per channel (accel x, y, z, gyro x, y, z), with their
 // mean sample period: what an Allan deviation of the still data is computed on. Empty when nothing is still.
