@@ -22,5 +22,6 @@ void addWatchCommand(CLI::App& app);
 void addEchoCommand(CLI::App& app);
 void addLog2CsvCommand(CLI::App& app);
 void addMagcalCommand(CLI::App& app);
+void addValidateCommand(CLI::App& app);
 
 }  // namespace imucal::cli
