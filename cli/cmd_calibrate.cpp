@@ -110,7 +110,9 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
             << r.stats.heading_rejected << (r.stats.heading_steep > 0 ? ", " + std::to_string(r.stats.heading_steep) +
                                                " not used, the x axis too steep" : std::string())
             << ", mean NIS " << std::setprecision(2) << r.stats.heading_nis_mean
-            << "), zero-velocity mean NIS " << r.stats.velocity_nis_mean << '\n';
+            << "), zero-velocity mean NIS " << r.stats.velocity_nis_mean << ", still gyro zero rate "
+            << r.stats.zero_rate_updates << " (rejected " << r.stats.zero_rate_rejected << ", mean NIS "
+            << r.stats.zero_rate_nis_mean << ")\n";
   for (const ParamCombination& c : r.combinations) std::cout << "determined only together: " << io::combinationText(c) << '\n';
 }
 

@@ -24,6 +24,7 @@
 #include "imucal/core/start_point.hpp"
 #include "imucal/core/static_detector.hpp"
 #include "imucal/core/units.hpp"
+#include "imucal/core/zero_rate.hpp"
 
 namespace imucal {
 
@@ -109,6 +110,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
       max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (steps + max_history_epochs - 1) / max_history_epochs);
   out.history.reserve(steps / stride + 2);
   FilterStepper stepper(filter, m, per_step);
+  const std::vector<bool> resting = m.zero_rate ? restingSamples(imu, still) : std::vector<bool>(imu.size(), false);
   stepper.probeFreeSteps(probe_free_steps);
   if (use_heading) {
     const HeadingErrors heading_errors{m.heading_bias, m.heading_latency};
@@ -131,7 +133,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   };
   record(0);
   for (std::size_t k = 1; k < imu.size(); ++k) {
-    const bool stepped = stepper.addImu(imu[k], k + 1 == imu.size(), held[k]);
+    const bool stepped = stepper.addImu(imu[k], k + 1 == imu.size(), held[k], resting[k]);
     // NaN never turns finite again, so checking the recorded epochs (always the last) misses none.
     if (stepped && (stepper.steps() % stride == 0 || stepper.steps() == steps)) record(k);
   }
@@ -167,7 +169,8 @@ struct PassesOutput {
 
 // The scalar updates of a pass, for kWorseFitPerUpdate.
 double scalarUpdates(const MeasurementStats& s) {
-  return 3.0 * static_cast<double>(s.zero_velocity_updates + s.position_updates) + static_cast<double>(s.heading_updates);
+  return 3.0 * static_cast<double>(s.zero_velocity_updates + s.position_updates) +
+         static_cast<double>(s.heading_updates + s.zero_rate_updates);
 }
 
 // Whether pass `next` fit worse than `best` beyond chance (a pass that turned non-finite fits worst).

@@ -1,5 +1,7 @@
 #include "imucal/core/eskf.hpp"
 
+#include "imucal/core/zero_rate.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -41,6 +43,7 @@ void Eskf::initialize(const ImuSample& first_raw, const NavState& nav, const Vec
   nav_ = nav;
   params_ = params;
   P_ = P0;
+  prior_P_ = P0;
   dx_.setZero(layout_.size);
   centre_.setZero();
   if (prior_mean.size() != 0) dx_.segment(StateLayout::kParamStart, layout_.paramCount()) = prior_mean - params;
@@ -253,6 +256,31 @@ Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double ga
   josephScalarUpdate(P_, h_, r, gain_, s, has_considered_ ? &update_mask_ : nullptr);
   out.accepted = true;
   applyUpdate(Innovation::Heading, y, s);
+  return out;
+}
+
+Eskf::ZeroRateOutcome Eskf::updateZeroRate(const ImuSample& mean_raw, double seconds, double psd, double gate_sigma) {
+  ZeroRateOutcome out;
+  if (!(seconds > 0.0) || !(psd > 0.0)) return out;
+  const Mat3 c = nav_.q_nb.toRotationMatrix();
+  const ImuSample m = corrected(mean_raw);
+  const Vec3 w_ie = earth_.earthRateNed();
+  // The gyro matrix multiplies the true rate, which at rest is the Earth's (or nothing): not the corrected
+  // reading, whose noise and bias error would make the scale look observable at a still.
+  zeroRateRow(layout_, c, m.accel, c.transpose() * w_ie, gyro_gain_inv_, w_ie, h_);
+  const Vec3 up = c.transpose() * Vec3(0.0, 0.0, -1.0);
+  const double y = up.dot(c.transpose() * w_ie - m.gyro) - h_.dot(dx_);
+  const double r = zeroRateVariance(psd, seconds, earth_.earth_rate);
+  out.innovation = y;
+  out.nis = y * y / (h_.dot(P_ * h_) + r);
+  // Gated against the prior, not the current covariance: a filter that has gone wrong with confidence must
+  // still hear the still gyro; only a rate no gyro at rest reads (a slow turn taken for a still) is refused.
+  const double prior_nis = y * y / (h_.dot(prior_P_ * h_) + r);
+  if (gate_sigma > 0.0 && prior_nis > gate_sigma * gate_sigma) return out;
+  double s = 0.0;
+  josephScalarUpdate(P_, h_, r, gain_, s, has_considered_ ? &update_mask_ : nullptr);
+  out.accepted = true;
+  applyUpdate(Innovation::ZeroRate, y, s);
   return out;
 }
 

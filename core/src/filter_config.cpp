@@ -29,6 +29,7 @@ FilterConfig effectiveConfig(const FilterConfig& config, std::vector<std::string
           "uncertainty");
     }
   }
+  if (!(f.measurements.zero_rate_psd > 0.0)) f.measurements.zero_rate_psd = f.noise.gyro_white * f.noise.gyro_white;
   return f;
 }
 

@@ -45,7 +45,15 @@ void FilterStepper::applyHeading(double value) {
   filter_.correct();
 }
 
-bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool held) {
+bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool held, bool still) {
+  if (m_.zero_rate) {
+    if (still && !run_ended_) {
+      still_run_.add(s);
+    } else if (!still && still_run_.samples() > 0) {
+      run_ended_ = true;
+    }
+    if (end_step) run_ended_ = still_run_.samples() > 0;
+  }
   const bool last = ++in_step_ == per_step_ || end_step;
   // A heading inside the step splits it: the filter is brought to its time and updated there. One at the
   // step's last sample waits for the pseudo-observations, as at the sample itself.
@@ -71,6 +79,22 @@ bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool held) {
   return true;
 }
 
+void FilterStepper::applyZeroRate() {
+  const double seconds = still_run_.seconds();
+  if (seconds >= m_.zero_rate_min_seconds) {
+    const auto r = filter_.updateZeroRate(still_run_.mean(), seconds, m_.zero_rate_psd, m_.zero_rate_gate_sigma);
+    if (r.accepted) {
+      ++stats_.zero_rate_updates;
+      zero_rate_nis_sum_ += r.nis;
+      stats_.zero_rate_nis_mean = zero_rate_nis_sum_ / static_cast<double>(stats_.zero_rate_updates);
+    } else {
+      ++stats_.zero_rate_rejected;
+    }
+  }
+  still_run_.clear();
+  run_ended_ = false;
+}
+
 void FilterStepper::endStep(bool held) {
   if (!pending_.empty()) flush();
   if (probe_ && m_.zero_velocity && m_.free_moves && !held)
@@ -85,6 +109,7 @@ void FilterStepper::endStep(bool held) {
     ++stats_.position_updates;
     stats_.position_nis_mean = position_nis_sum_ / (3.0 * static_cast<double>(stats_.position_updates));
   }
+  if (run_ended_) applyZeroRate();
   filter_.correct();
   while (!headings_.empty() && headings_.front().t == filter_.time()) {
     applyHeading(headings_.front().value);

@@ -5,6 +5,7 @@
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/rotation.hpp"
 #include "imucal/core/sample_clock.hpp"
+#include "imucal/core/zero_rate.hpp"
 
 namespace imucal {
 
@@ -76,8 +77,19 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
   std::vector<double> intervals(traj.size() - 1);
   for (std::size_t k = 1; k < traj.size(); ++k) intervals[k - 1] = traj[k].t - traj[k - 1].t;
   const auto per_step = static_cast<std::size_t>(samplesPerSpan(std::move(intervals), 1.0 / config.filter_rate));
+  // The filter's zero-rate updates (filter_stepper.cpp): a still run ends at the first point that is not
+  // still, or at the trajectory's end, and is used at the end of that step.
+  StillRunMean still_run;
+  bool run_ended = false;
   for (std::size_t first = 0; first + 1 < traj.size(); first += per_step) {
     const std::size_t k = std::min(traj.size() - 1, first + per_step);
+    for (std::size_t j = first + 1; m.zero_rate && j <= k; ++j) {
+      if (traj[j].still && !run_ended)
+        still_run.add({traj[j].t, traj[j].f_b, traj[j].w_b, 0});
+      else if (!traj[j].still && still_run.samples() > 0)
+        run_ended = true;
+      if (j + 1 == traj.size()) run_ended = still_run.samples() > 0;
+    }
     const Linearization lin = linearizeStep(traj, first, k);
     double t = traj[first].t;
     while (use_heading && h < heading_times.size() && heading_times[h] <= traj[k].t) {
@@ -114,6 +126,16 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
     }
     if (m.constant_position && !m.free_moves) {
       for (int i = 0; i < 3; ++i) update(StateLayout::kPos + i, i, -c, i, m.constant_position_sigma);
+    }
+    if (run_ended) {
+      const double seconds = still_run.seconds();
+      if (seconds >= m.zero_rate_min_seconds) {
+        const ImuSample mean = still_run.mean();
+        zeroRateRow(layout, c, mean.accel, mean.gyro, Mat3::Identity(), config.earth.earthRateNed(), hrow);
+        josephScalarUpdate(P, hrow, zeroRateVariance(m.zero_rate_psd, seconds, config.earth.earth_rate), K, s, mask);
+      }
+      still_run.clear();
+      run_ended = false;
     }
     record(traj[k].t);
   }

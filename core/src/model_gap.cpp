@@ -13,7 +13,7 @@ namespace imucal {
 namespace {
 
 const char* const kInnovationNames[] = {"velocity_x", "velocity_y", "velocity_z", "position_x",
-                                        "position_y", "position_z", "heading"};
+                                        "position_y", "position_z", "heading", "zero_rate"};
 
 struct Accumulator {
   std::vector<double> still, turning;

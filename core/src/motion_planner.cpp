@@ -73,6 +73,7 @@ std::vector<TrajectoryPoint> motionTrajectory(const CandidateMotion& m, const Ea
     // At rest the accelerometer reads the reaction to gravity: up, -g along NED z.
     p.f_b = -(c_bn * earth.gravityNed());
     p.w_b = rate_b + c_bn * earth.earthRateNed();
+    p.still = rate_b.norm() < 1e-12;
     out.push_back(p);
   }
   return out;

@@ -210,6 +210,12 @@ void readMeasurements(YamlSection s, MeasurementConfig& m) {
   m.heading = s.boolean("heading", m.heading);
   m.free_moves = s.boolean("free_moves", m.free_moves);
   m.hold_turns = s.boolean("hold_turns", m.hold_turns);
+  m.zero_rate = s.boolean("zero_rate", m.zero_rate);
+  // 0: measured on the recording's stills (run_config.cpp).
+  m.zero_rate_psd = std::pow(s.number("zero_rate_noise_deg_per_sqrt_h", std::sqrt(m.zero_rate_psd) / units::deg_per_sqrt_h,
+                                      Range::nonNegative()) * units::deg_per_sqrt_h, 2);
+  m.zero_rate_min_seconds = s.number("zero_rate_min_seconds", m.zero_rate_min_seconds, Range::positive());
+  m.zero_rate_gate_sigma = s.number("zero_rate_gate_sigma", m.zero_rate_gate_sigma, Range::nonNegative());
   s.finish();
 }
 
@@ -258,6 +264,7 @@ void readFilter(YamlSection s, FilterConfig& f) {
 FilterConfig userFilterDefaults() {
   FilterConfig f;
   for (const auto& info : paramBlocks()) f.model[info.block].mode = info.config_mode;
+  f.measurements.zero_rate = true;
   return f;
 }
 

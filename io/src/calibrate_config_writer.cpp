@@ -1,3 +1,5 @@
+#include <cmath>
+
 #include "imucal/core/units.hpp"
 #include "imucal/io/atomic_file.hpp"
 #include "imucal/io/config.hpp"
@@ -127,6 +129,10 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   emitBool(out, "heading", f.measurements.heading);
   emitBool(out, "free_moves", f.measurements.free_moves);
   emitBool(out, "hold_turns", f.measurements.hold_turns);
+  emitBool(out, "zero_rate", f.measurements.zero_rate);
+  emitNumber(out, "zero_rate_noise_deg_per_sqrt_h", std::sqrt(f.measurements.zero_rate_psd) / units::deg_per_sqrt_h);
+  emitNumber(out, "zero_rate_min_seconds", f.measurements.zero_rate_min_seconds);
+  emitNumber(out, "zero_rate_gate_sigma", f.measurements.zero_rate_gate_sigma);
   out << YAML::EndMap;
 
   out << YAML::Key << "model" << YAML::Value << YAML::BeginMap;

@@ -57,8 +57,11 @@ TEST_F(CliPlanTest, PaperMotionWithTheFullModelNamesWhatIsMissing) {
     EXPECT_EQ(verdict(plan, name), "unobservable") << name;
   EXPECT_EQ(verdict(plan, "accel_bias_z"), "only in a combination");
   EXPECT_TRUE(lists(plan["parameters"]["accel_bias_z"]["with"], "accel_scale_z"));
-  EXPECT_EQ(verdict(plan, "gyro_bias_z"), "only in a combination");
-  EXPECT_TRUE(lists(plan["parameters"]["gyro_bias_z"]["with"], "gyro_g_sensitivity_zz"));
+  // The still gyro's zero rate (and the heading) give b_z - g G_zz: the gyro z bias is then known as well as
+  // the z g-sensitivity's prior allows (0.1 deg/s/g at 1 g: 360 deg/h, a tenth of its own prior), and the
+  // g-sensitivity stays at its prior.
+  EXPECT_NEAR(plan["parameters"]["gyro_bias_z"]["sigma_deg_per_h"].get<double>(), 0.1 * 3600.0, 0.05 * 360.0);
+  EXPECT_EQ(verdict(plan, "gyro_g_sensitivity_zz"), "unobservable");
   // b_z - g s_z in ug per ppm: g x 1 ppm = 1.000 ug at standard gravity, so the coefficient prints as 1.
   bool found = false;
   for (const auto& c : plan["combinations"])

@@ -50,6 +50,16 @@ class Eskf {
   HeadingOutcome updateHeading(double heading, double sigma, double gate_sigma = 0.0,
                                double max_elevation = MeasurementConfig{}.heading_max_elevation);
 
+  struct ZeroRateOutcome {
+    bool accepted = false;
+    double innovation = 0.0;  // rad/s
+    double nis = 0.0;
+  };
+  // The mean raw sample of a still run `seconds` long says the gyro reads bias + G f + Earth rate along the
+  // vertical (zero_rate.hpp); psd: the still gyro's noise density squared, rad^2/s; gate_sigma > 0
+  // rejects innovations beyond that many sigma of the prior (not of the current covariance).
+  ZeroRateOutcome updateZeroRate(const ImuSample& mean_raw, double seconds, double psd, double gate_sigma = 0.0);
+
   // Feeds the accumulated error state into the nominal state and resets it. Without feedback (see
   // setFeedback) the error state is kept and propagated instead.
   void correct();
@@ -68,7 +78,7 @@ class Eskf {
   double logLikelihood() const { return log_likelihood_; }
   // Each scalar innovation (y, its variance s) is also appended here when set; channel as in Innovation.
   struct Innovation {
-    enum Channel { VelocityX, VelocityY, VelocityZ, PositionX, PositionY, PositionZ, Heading, kCount };
+    enum Channel { VelocityX, VelocityY, VelocityZ, PositionX, PositionY, PositionZ, Heading, ZeroRate, kCount };
     double t = 0.0;
     int channel = 0;
     double y = 0.0;
@@ -123,6 +133,7 @@ class Eskf {
   NavState nav_;
   VecX params_;
   StateMat P_;
+  StateMat prior_P_;  // P at initialize: the zero rate's gate
   StateVec dx_;
   StateVec gain_;
   StateVec h_;

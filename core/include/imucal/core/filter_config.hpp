@@ -71,6 +71,18 @@ struct MeasurementConfig {
   // With free_moves: a move whose zero-velocity innovations show that the centre stayed at rest (a turn in
   // the hand about a point, between carries) holds zero velocity throughout (see free_moves.hpp).
   bool hold_turns = true;
+  // At rest the gyro reads its bias, its g-sensitivity times the specific force and the Earth's rate: each
+  // still run's mean gyro along the vertical is a measurement (see zero_rate.hpp), applied where the run
+  // ends. Its noise: zero_rate_psd (rad^2/s; 0: the gyro's white noise squared), which a calibration
+  // measures on the recording's stills, where a hand-held device's sway shows up as it does in the mean.
+  // Off in a config built in code (the paper's filter, whose studies isolate the heading); on in every
+  // calibration config, file or daemon's (userFilterDefaults).
+  bool zero_rate = false;
+  double zero_rate_psd = 0.0;
+  double zero_rate_min_seconds = 1.0;  // shorter still runs are not used
+  // A run whose vertical rate is beyond this many sigma of what the prior allows a gyro at rest is no still
+  // (a slow turn): rejected (0: no gate).
+  double zero_rate_gate_sigma = 5.0;
 };
 
 // What earlier calibrations of the same sensor found, carried into the next one as its prior (the daemon's

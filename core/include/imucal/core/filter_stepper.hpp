@@ -12,6 +12,7 @@
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/initial_alignment.hpp"
 #include "imucal/core/types.hpp"
+#include "imucal/core/zero_rate.hpp"
 
 namespace imucal {
 
@@ -25,6 +26,9 @@ struct MeasurementStats {
   double heading_nis_mean = 0.0;  // mean normalized innovation squared (1 when consistent)
   double velocity_nis_mean = 0.0; // per component
   double position_nis_mean = 0.0; // per component
+  long zero_rate_updates = 0;     // still runs whose vertical rate was used (zero_rate.hpp)
+  long zero_rate_rejected = 0;    // failed the innovation gate
+  double zero_rate_nis_mean = 0.0;
 };
 
 // Levels the filter on the still stretch at the start of imu (see alignInitialState), places the IMU at
@@ -44,7 +48,9 @@ class FilterStepper {
   // here even if it is shorter than per_step (the stream's last sample).
   // held: the centre is at rest at this sample, the device still or turned about it (with free_moves, zero
   // velocity is applied only at steps whose last sample is held; see free_moves.hpp).
-  bool addImu(const ImuSample& sample, bool end_step = false, bool held = true);
+  // still: the device is at rest at this sample (detectStill); a run of still samples is one zero-rate
+  // update, applied at the end of the step in which it ends (or at the stream's end).
+  bool addImu(const ImuSample& sample, bool end_step = false, bool held = true, bool still = false);
   const MeasurementStats& stats() const { return stats_; }
   // With free_moves: at every step that ends where the centre is not held, the zero-velocity NIS per
   // component the filter would have had (not applied), for classifyMoves.
@@ -59,6 +65,7 @@ class FilterStepper {
   void flush();
   void applyHeading(double value);
   void endStep(bool held);
+  void applyZeroRate();
 
   Eskf& filter_;
   MeasurementConfig m_;
@@ -69,7 +76,9 @@ class FilterStepper {
   std::size_t steps_ = 0;
   ImuSample previous_;
   bool has_previous_ = false;
-  double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0, position_nis_sum_ = 0.0;
+  double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0, position_nis_sum_ = 0.0, zero_rate_nis_sum_ = 0.0;
+  StillRunMean still_run_;
+  bool run_ended_ = false;  // the run in still_run_ ended inside this step
   MeasurementStats stats_;
   bool probe_ = false;
   std::vector<StepNis> free_step_nis_;

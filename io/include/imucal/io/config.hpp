@@ -11,7 +11,7 @@ namespace imucal::io {
 
 // Everything `calibrate` needs besides the data: how to read the files and how to run the filter.
 // What a user's calibration gets when the config does not say: the full sensor model (the registry's
-// config_mode), unlike a FilterConfig built in code.
+// config_mode) and the still gyro's zero rate, unlike a FilterConfig built in code.
 FilterConfig userFilterDefaults();
 
 struct CalibrateConfig {
