@@ -46,14 +46,7 @@ void FilterStepper::applyHeading(double value) {
 }
 
 bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool held, bool still) {
-  if (m_.zero_rate) {
-    if (still && !run_ended_) {
-      still_run_.add(s);
-    } else if (!still && still_run_.samples() > 0) {
-      run_ended_ = true;
-    }
-    if (end_step) run_ended_ = still_run_.samples() > 0;
-  }
+  if (m_.zero_rate) still_run_.observe(s, still, end_step);
   const bool last = ++in_step_ == per_step_ || end_step;
   // A heading inside the step splits it: the filter is brought to its time and updated there. One at the
   // step's last sample waits for the pseudo-observations, as at the sample itself.
@@ -92,7 +85,6 @@ void FilterStepper::applyZeroRate() {
     }
   }
   still_run_.clear();
-  run_ended_ = false;
 }
 
 void FilterStepper::endStep(bool held) {
@@ -109,7 +101,7 @@ void FilterStepper::endStep(bool held) {
     ++stats_.position_updates;
     stats_.position_nis_mean = position_nis_sum_ / (3.0 * static_cast<double>(stats_.position_updates));
   }
-  if (run_ended_) applyZeroRate();
+  if (still_run_.ended()) applyZeroRate();
   filter_.correct();
   while (!headings_.empty() && headings_.front().t == filter_.time()) {
     applyHeading(headings_.front().value);

@@ -80,16 +80,10 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
   // The filter's zero-rate updates (filter_stepper.cpp): a still run ends at the first point that is not
   // still, or at the trajectory's end, and is used at the end of that step.
   StillRunMean still_run;
-  bool run_ended = false;
   for (std::size_t first = 0; first + 1 < traj.size(); first += per_step) {
     const std::size_t k = std::min(traj.size() - 1, first + per_step);
-    for (std::size_t j = first + 1; m.zero_rate && j <= k; ++j) {
-      if (traj[j].still && !run_ended)
-        still_run.add({traj[j].t, traj[j].f_b, traj[j].w_b, 0});
-      else if (!traj[j].still && still_run.samples() > 0)
-        run_ended = true;
-      if (j + 1 == traj.size()) run_ended = still_run.samples() > 0;
-    }
+    for (std::size_t j = first + 1; m.zero_rate && j <= k; ++j)
+      still_run.observe({traj[j].t, traj[j].f_b, traj[j].w_b, 0}, traj[j].still, j + 1 == traj.size());
     const Linearization lin = linearizeStep(traj, first, k);
     double t = traj[first].t;
     while (use_heading && h < heading_times.size() && heading_times[h] <= traj[k].t) {
@@ -127,7 +121,7 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
     if (m.constant_position && !m.free_moves) {
       for (int i = 0; i < 3; ++i) update(StateLayout::kPos + i, i, -c, i, m.constant_position_sigma);
     }
-    if (run_ended) {
+    if (still_run.ended()) {
       const double seconds = still_run.seconds();
       if (seconds >= m.zero_rate_min_seconds) {
         const ImuSample mean = still_run.mean();
@@ -135,7 +129,6 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
         josephScalarUpdate(P, hrow, zeroRateVariance(m.zero_rate_psd, seconds, config.earth.earth_rate), K, s, mask);
       }
       still_run.clear();
-      run_ended = false;
     }
     record(traj[k].t);
   }

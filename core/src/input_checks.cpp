@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "imucal/core/rotation.hpp"
 #include "imucal/core/static_detector.hpp"
 #include "imucal/core/units.hpp"
 
@@ -27,10 +28,6 @@ constexpr double kQuietLinear = 0.05;
 // Axis sets whose errors differ by less than this fit the moves alike.
 constexpr double kAxisTie = 1.0 * units::deg;
 constexpr double kMaxMoveSeconds = 60.0;
-
-double angleBetween(const Vec3& a, const Vec3& b) {
-  return std::atan2(a.cross(b).norm(), a.dot(b));
-}
 
 std::string vec(const Vec3& v) {
   std::ostringstream out;

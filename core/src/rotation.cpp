@@ -60,4 +60,6 @@ double wrapAngle(double a) {
   return a;
 }
 
+double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
+
 }  // namespace imucal

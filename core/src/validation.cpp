@@ -10,8 +10,6 @@ namespace imucal {
 
 namespace {
 
-double angleBetween(const Vec3& a, const Vec3& b) { return std::atan2(a.cross(b).norm(), a.dot(b)); }
-
 struct StillMeans {
   Vec3 f = Vec3::Zero();      // corrected accelerometer
   Vec3 gyro = Vec3::Zero();   // as read

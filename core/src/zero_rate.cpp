@@ -82,6 +82,14 @@ std::vector<bool> restingSamples(const std::vector<ImuSample>& imu, const std::v
   return out;
 }
 
+void StillRunMean::observe(const ImuSample& raw, bool still, bool last) {
+  if (still && !ended_)
+    add(raw);
+  else if (!still && n_ > 0)
+    ended_ = true;
+  if (last) ended_ = n_ > 0;
+}
+
 void StillRunMean::add(const ImuSample& raw) {
   if (n_ == 0) first_t_ = raw.t;
   last_t_ = raw.t;

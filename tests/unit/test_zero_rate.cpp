@@ -90,6 +90,29 @@ TEST(ZeroRate, ARunsMeanAndLengthCountEverySample) {
   EXPECT_EQ(run.samples(), 0u);
 }
 
+// The rule the filter's stepper and the bound share: a run ends at its first sample that is not still, or
+// at the stream's last; samples after its end wait for clear().
+TEST(ZeroRate, ARunEndsAtItsFirstMovingSampleOrTheStreamsEnd) {
+  StillRunMean run;
+  const auto sample = [](double t, double w) { return ImuSample{t, Vec3(0.0, 0.0, -9.8), Vec3(w, 0.0, 0.0), 0}; };
+  run.observe(sample(0.00, 1.0), false, false);
+  EXPECT_FALSE(run.ended());
+  EXPECT_EQ(run.samples(), 0u);
+  run.observe(sample(0.01, 2.0), true, false);
+  run.observe(sample(0.02, 4.0), true, false);
+  EXPECT_FALSE(run.ended());
+  run.observe(sample(0.03, 8.0), false, false);
+  EXPECT_TRUE(run.ended());
+  run.observe(sample(0.04, 16.0), true, false);  // the next run's: not mixed into this one
+  EXPECT_EQ(run.samples(), 2u);
+  EXPECT_DOUBLE_EQ(run.mean().gyro.x(), 3.0);
+  run.clear();
+  EXPECT_FALSE(run.ended());
+  run.observe(sample(0.05, 5.0), true, true);
+  EXPECT_TRUE(run.ended());
+  EXPECT_EQ(run.samples(), 1u);
+}
+
 // A still run whose last half second is the slow start of a turn about z (rate 7.1 t^2 deg/s, a 360 deg
 // raised-cosine turn in 10 s), which a still detector lets in. The samples alternate by 1e-4 rad/s about
 // the bias, so every 0.1 s window before the turn averages exactly to it; the run's noise per window is

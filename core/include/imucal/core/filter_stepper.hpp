@@ -78,7 +78,6 @@ class FilterStepper {
   bool has_previous_ = false;
   double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0, position_nis_sum_ = 0.0, zero_rate_nis_sum_ = 0.0;
   StillRunMean still_run_;
-  bool run_ended_ = false;  // the run in still_run_ ended inside this step
   MeasurementStats stats_;
   bool probe_ = false;
   std::vector<StepNis> free_step_nis_;

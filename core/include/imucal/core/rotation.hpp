@@ -14,5 +14,7 @@ Vec3 quatToEuler(const Quat& q_nb);  // (roll, pitch, yaw)
 double yawOf(const Quat& q_nb);
 // Angle wrapped into (-pi, pi].
 double wrapAngle(double a);
+// Angle between two vectors, rad in [0, pi] (accurate near 0 and pi, unlike acos of the cosine).
+double angleBetween(const Vec3& a, const Vec3& b);
 
 }  // namespace imucal

@@ -33,9 +33,15 @@ double zeroRateVariance(double psd, double seconds, bool earth_rate_modelled);
 // run's own noise.
 std::vector<bool> restingSamples(const std::vector<ImuSample>& imu, const std::vector<bool>& still);
 
-// The samples of one still run, summed as they arrive: its mean raw sample and its length.
+// The samples of one still run, summed as they arrive: its mean raw sample and its length. The filter's
+// stepper and the information bound feed it every sample with observe(), so both end a run alike.
 class StillRunMean {
  public:
+  // A still sample joins the run (unless it already ended); the first sample that is not still ends it,
+  // as does the stream's last sample.
+  void observe(const ImuSample& raw, bool still, bool last);
+  // The run ended and is ready to be used (then clear()).
+  bool ended() const { return ended_; }
   void add(const ImuSample& raw);
   void clear() { *this = StillRunMean(); }
   std::size_t samples() const { return n_; }
@@ -45,6 +51,7 @@ class StillRunMean {
 
  private:
   std::size_t n_ = 0;
+  bool ended_ = false;
   double first_t_ = 0.0, last_t_ = 0.0;
   Vec3 accel_ = Vec3::Zero(), gyro_ = Vec3::Zero();
 };
