@@ -113,6 +113,7 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
             << "), zero-velocity mean NIS " << r.stats.velocity_nis_mean << ", still gyro zero rate "
             << r.stats.zero_rate_updates << " (rejected " << r.stats.zero_rate_rejected << ", mean NIS "
             << r.stats.zero_rate_nis_mean << ")\n";
+  if (!r.start.empty()) std::cout << r.start << '\n';
   for (const ParamCombination& c : r.combinations) std::cout << "determined only together: " << io::combinationText(c) << '\n';
 }
 

@@ -27,18 +27,24 @@ std::string motionStudyMarkdown(const sim::MotionStudyReport& report, const std:
     worst = std::max(worst, p.z_worst);
   }
   md << "### " << title << ": " << report.runs << " runs, " << number(report.duration) << " s of motion\n\n"
-     << "| parameter | unit | bound | error RMS | RMS / bound | sigma (RMS) | RMS(error / sigma) | worst | converged |\n"
-     << "|---|---|---|---|---|---|---|---|---|\n";
+     << "| parameter | unit | bound | error RMS | RMS / bound | sigma (RMS) | RMS(error / sigma) | worst | converged | converged beyond 4 sigma |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& p : report.params) {
     const io::ParamUnit u = io::paramUnit(p.name);
     md << "| " << p.name << " | " << u.human << " | " << number(p.bound / u.factor) << " | "
        << number(p.error_rms / u.factor) << " | " << number(p.error_rms / p.bound) << " | "
        << number(p.sigma_rms / u.factor) << " | " << number(p.z_rms) << " | " << number(p.z_worst) << " | "
-       << number(100.0 * p.converged_fraction) << " % |\n";
+       << number(100.0 * p.converged_fraction) << " % | " << p.converged_wrong << " |\n";
   }
   md << "\nOver every parameter: RMS(error / sigma) "
      << number(report.params.empty() ? 0.0 : std::sqrt(z2 / static_cast<double>(report.params.size())))
      << ", worst " << number(worst) << ".\n";
+  if (!report.passes.empty()) {
+    const auto [fewest, most] = std::minmax_element(report.passes.begin(), report.passes.end());
+    md << "Passes: " << *fewest << "-" << *most << ". ";
+  }
+  md << "Refused (imucal calibrate exits 3): " << report.refused << " of " << report.runs << " runs"
+     << (report.refused > 0 ? " (the first: " + report.first_refusal + ")" : "") << ".\n";
   return md.str();
 }
 
@@ -53,9 +59,13 @@ nlohmann::json motionStudyJson(const sim::MotionStudyReport& report) {
                                {"sigma_rms_" + u.suffix, p.sigma_rms / u.factor},
                                {"z_rms", p.z_rms},
                                {"z_worst", p.z_worst},
-                               {"converged_fraction", p.converged_fraction}};
+                               {"converged_fraction", p.converged_fraction},
+                               {"converged_beyond_4_sigma", p.converged_wrong}};
   }
   j["run_z_rms"] = report.run_z_rms;
+  j["passes"] = report.passes;
+  j["refused"] = report.refused;
+  j["first_refusal"] = report.first_refusal;
   return j;
 }
 

@@ -9,13 +9,19 @@ namespace imucal {
 namespace {
 
 // White noise of PSD q on a velocity triad over dt, and what it leaves on the position that integrates it.
-void addIntegratedWhiteNoise(StateMat& P, int pos, int vel, double q, double dt) {
-  for (int i = 0; i < 3; ++i) {
-    P(vel + i, vel + i) += q * dt;
-    P(pos + i, pos + i) += q * dt * dt * dt / 3.0;
-    P(pos + i, vel + i) += q * dt * dt / 2.0;
-    P(vel + i, pos + i) += q * dt * dt / 2.0;
-  }
+void addIntegratedWhiteNoise(StateMat& P, int pos, int vel, const Mat3& q, double dt) {
+  P.block<3, 3>(vel, vel) += q * dt;
+  P.block<3, 3>(pos, pos) += q * (dt * dt * dt / 3.0);
+  P.block<3, 3>(pos, vel) += q * (dt * dt / 2.0);
+  P.block<3, 3>(vel, pos) += q * (dt * dt / 2.0);
+}
+
+// A sensor's white noise of PSD q on each axis of its reading, as it reaches the corrected value
+// (gain^-1 (reading - bias)) resolved in NED: q (C gain^-1)(C gain^-1)^T. With a sensitivity far off its
+// nominal (raw counts) an axis read at half gain carries twice the noise once corrected.
+Mat3 correctedNoise(double q, const Mat3& c_bn, const Mat3& gain_inv) {
+  const Mat3 m = c_bn * gain_inv;
+  return q * m * m.transpose();
 }
 
 }  // namespace
@@ -123,15 +129,15 @@ void ErrorDynamics::propagate(StateMat& P, const Linearization& lin, double dt) 
   P += dt * (fp + fp.transpose());
   const StateMat fpft_block = fpft(dynamic_rows_, Eigen::all);
   P(dynamic_rows_, dynamic_rows_) += (0.5 * dt * dt) * (fpft_block + fpft_block.transpose());
-  // Velocity and attitude noise enter through C_bn, which is orthogonal: isotropic in NED. Position picks
-  // up the integrated velocity noise.
-  addIntegratedWhiteNoise(P, L::kPos, L::kVel, q_vel_, dt);
-  P.diagonal().segment<3>(L::kAtt).array() += q_att_ * dt;
+  // Velocity and attitude noise enter through the corrected readings; position picks up the integrated
+  // velocity noise.
+  addIntegratedWhiteNoise(P, L::kPos, L::kVel, correctedNoise(q_vel_, lin.c_bn, lin.accel_gain_inv), dt);
+  P.block<3, 3>(L::kAtt, L::kAtt) += correctedNoise(q_att_, lin.c_bn, lin.gyro_gain_inv) * dt;
   P.diagonal().segment<3>(L::kAccelBias).array() += q_ba_ * dt;
   P.diagonal().segment<3>(L::kGyroBias).array() += q_bg_ * dt;
   if (layout_.hasCentre()) {
     // The driving noise enters the centre's velocity; its displacement integrates it, as position does.
-    addIntegratedWhiteNoise(P, layout_.centre(), layout_.centre() + 3, centre_q_, dt);
+    addIntegratedWhiteNoise(P, layout_.centre(), layout_.centre() + 3, centre_q_ * Mat3::Identity(), dt);
   }
 }
 

@@ -270,7 +270,8 @@ Eskf::ZeroRateOutcome Eskf::updateZeroRate(const ImuSample& mean_raw, double sec
   zeroRateRow(layout_, c, m.accel, c.transpose() * w_ie, gyro_gain_inv_, w_ie, h_);
   const Vec3 up = c.transpose() * Vec3(0.0, 0.0, -1.0);
   const double y = up.dot(c.transpose() * w_ie - m.gyro) - h_.dot(dx_);
-  const double r = zeroRateVariance(psd, seconds, earth_.earth_rate);
+  // psd is the reading's; an axis read at a gain below one carries more of it once corrected.
+  const double r = zeroRateVariance(psd * (gyro_gain_inv_.transpose() * up).squaredNorm(), seconds, earth_.earth_rate);
   out.innovation = y;
   out.nis = y * y / (h_.dot(P_ * h_) + r);
   // Gated against the prior, not the current covariance: a filter that has gone wrong with confidence must

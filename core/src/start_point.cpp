@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include "imucal/core/param_vector.hpp"
@@ -22,6 +23,15 @@ constexpr double kMaxMoveSeconds = 60.0;
 // A move whose gravity ends within this of where it started turned about the vertical.
 constexpr double kVerticalTurn = 10.0 * units::deg;
 constexpr int kMaxIterations = 30;
+// A triad's gain along any axis is positive and no less than this: a sensitivity ten times the datasheet's
+// is a wrong full-scale setting, not a scale error. Without the bound |A^-1 (f - b)| = g has a mirror
+// answer for each axis (its gain and the misalignments that involve it negated) that a long step from a
+// sensitivity 50 % off can land in.
+constexpr double kMinGain = 0.1;
+
+// Residuals that say "not a sensor" (infinite) where a triad's gain leaves that range: the fit's steps
+// into it fit worse than any, so they are not taken.
+bool physicalGains(const TriadErrors& t) { return (Vec3::Ones() + t.scale).minCoeff() >= kMinGain; }
 
 struct Pose {
   Vec3 f = Vec3::Zero(), w = Vec3::Zero();
@@ -133,6 +143,38 @@ std::vector<int> freeParams(const StateLayout& layout, std::initializer_list<Par
   return out;
 }
 
+// Where the gyro fit starts. A direction carried through a 180 deg move by a gyro 50 % off lands 90 deg
+// away, and further off the residual stops growing (a chord of the sphere): from the prior mean alone the
+// fit can settle in a wrong valley (on the protocol, an x gyro at half its gain went to the gain floor).
+// So the scale diagonal is first tried on a grid, -2 to +2 prior sigmas per axis (each point within half a
+// sigma of one a 2-sigma truth can be), and the fit starts at the best point; the misalignments, which
+// cannot be that far off, stay at p's.
+VecX coarseScaleStart(const Residuals& residuals, const VecX& p, const StateLayout& layout, const VecX& prior_sigma) {
+  const std::vector<int> scale = freeParams(layout, {ParamBlock::GyroScale});
+  if (scale.size() != 3) return p;
+  constexpr int kSteps = 2;  // grid points each side of the prior mean
+  VecX best = p;
+  double best_cost = residuals(p).squaredNorm();
+  VecX q = p;
+  for (int i = -kSteps; i <= kSteps; ++i)
+    for (int j = -kSteps; j <= kSteps; ++j)
+      for (int k = -kSteps; k <= kSteps; ++k) {
+        const int steps[3] = {i, j, k};
+        for (int a = 0; a < 3; ++a) {
+          const int s = scale[static_cast<std::size_t>(a)];
+          q(s) = p(s) + steps[a] * prior_sigma(s);
+        }
+        // The prior penalty too: a grid point is only better if the data say so beyond the prior's cost.
+        double c = residuals(q).squaredNorm();
+        for (int a = 0; a < 3; ++a) c += steps[a] * steps[a];
+        if (std::isfinite(c) && c < best_cost) {
+          best_cost = c;
+          best = q;
+        }
+      }
+  return best;
+}
+
 }  // namespace
 
 std::string StartPoint::summary() const {
@@ -174,6 +216,7 @@ StartPoint findStartPoint(const std::vector<ImuSample>& imu, const std::vector<b
   const auto accel_residuals = [&](const VecX& q) {
     const TriadErrors accel = toCalibrationParams(layout, q, config.model).imu.accel;
     VecX r(static_cast<Eigen::Index>(poses.size()));
+    if (!physicalGains(accel)) return VecX::Constant(r.size(), std::numeric_limits<double>::infinity()).eval();
     for (std::size_t k = 0; k < poses.size(); ++k)
       r(static_cast<Eigen::Index>(k)) = (accel.remove(poses[k].f).norm() - g) / (kPoseSigma * g);
     return r;
@@ -233,6 +276,7 @@ StartPoint findStartPoint(const std::vector<ImuSample>& imu, const std::vector<b
       const TriadErrors gyro = toCalibrationParams(layout, q, config.model).imu.gyro;
       const Mat3 gain_inv = gyro.gainMatrix().inverse();
       VecX r(static_cast<Eigen::Index>(4 * moves.size()));
+      if (!physicalGains(gyro)) return VecX::Constant(r.size(), std::numeric_limits<double>::infinity()).eval();
       for (std::size_t k = 0; k < moves.size(); ++k) {
         const PoseMove& m = moves[k];
         Quat turned = Quat::Identity();  // body at the move's start <- body now
@@ -250,7 +294,8 @@ StartPoint findStartPoint(const std::vector<ImuSample>& imu, const std::vector<b
       }
       return r;
     };
-    p = fitWithPrior(gyro_residuals, p, gyro_free, prior_mean, prior_sigma);
+    p = fitWithPrior(gyro_residuals, coarseScaleStart(gyro_residuals, p, layout, prior_sigma), gyro_free, prior_mean,
+                     prior_sigma);
     out.moves = static_cast<int>(moves.size());
     out.moves_about_vertical =
         static_cast<int>(std::count_if(moves.begin(), moves.end(), [](const PoseMove& m) { return m.about_vertical; }));

@@ -73,6 +73,7 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
                 {"zero_rate_nis_mean", numberOrNull(s.zero_rate_nis_mean)}}},
               {"log_likelihood", numberOrNull(result.log_likelihood)},
               {"passes", result.passes_run},
+              {"start", result.start.empty() ? "the prior mean" : result.start},
               {"duration_s", numberOrNull(result.duration)},
               {"warnings", result.warnings},
               {"sigma_inflation", numberOrNull(result.sigma_inflation)}};

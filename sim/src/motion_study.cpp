@@ -4,9 +4,11 @@
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <thread>
 
 #include "imucal/core/calibrator.hpp"
+#include "imucal/core/consistency.hpp"
 #include "imucal/core/param_vector.hpp"
 #include "imucal/sim/trajectory.hpp"
 
@@ -17,7 +19,15 @@ namespace {
 struct RunOutcome {
   VecX error, sigma;
   std::vector<bool> converged;
+  std::vector<std::string> refusal;  // empty: accepted
+  int passes = 0;
 };
+
+std::string joined(const std::vector<std::string>& reasons) {
+  std::string out;
+  for (const std::string& r : reasons) out += (out.empty() ? "" : "; ") + r;
+  return out;
+}
 
 }  // namespace
 
@@ -31,10 +41,13 @@ MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions&
     for (std::size_t run = next++; run < runs; run = next++) {
       const std::uint64_t seed = options.first_seed + run;
       const SimOutput out = simulate(sim, seed);
-      const CalibrationResult r = calibrate(out.imu, out.heading, options.filter);
+      const CalibrationResult r = calibrate(out.imu, out.heading, options.filter, options.calibrate);
       // The gravity error the filter could estimate: the simulated magnitude minus the one it assumes.
       const CalibrationParams applied{out.applied_errors, sim.earth.gravity() - options.filter.earth.gravity()};
-      outcomes[run] = {r.estimate - toParamVector(r.layout, applied), r.sigma, r.converged};
+      RunOutcome& o = outcomes[run];
+      o = {r.estimate - toParamVector(r.layout, applied), r.sigma, r.converged, inconsistencies(r), r.passes_run};
+      // As imucal calibrate: a refused result promises nothing.
+      if (!o.refusal.empty()) o.converged.assign(o.converged.size(), false);
       if (run == 0) names = r.names;
       if (options.progress) options.progress(++done, runs);
     }
@@ -63,7 +76,9 @@ MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions&
       s2 += o.sigma(j) * o.sigma(j);
       z2 += z * z;
       p.z_worst = std::max(p.z_worst, std::abs(z));
-      converged += o.converged[static_cast<std::size_t>(j)] ? 1 : 0;
+      const bool c = o.converged[static_cast<std::size_t>(j)];
+      converged += c ? 1 : 0;
+      p.converged_wrong += c && std::abs(z) > 4.0 ? 1 : 0;
     }
     const double count = static_cast<double>(runs);
     p.error_rms = std::sqrt(e2 / count);
@@ -72,8 +87,12 @@ MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions&
     p.converged_fraction = converged / count;
     report.params.push_back(p);
   }
-  for (const RunOutcome& o : outcomes)
+  for (const RunOutcome& o : outcomes) {
     report.run_z_rms.push_back(std::sqrt((o.error.array() / o.sigma.array()).square().mean()));
+    report.passes.push_back(o.passes);
+    if (o.refusal.empty()) continue;
+    if (report.refused++ == 0) report.first_refusal = joined(o.refusal);
+  }
   return report;
 }
 

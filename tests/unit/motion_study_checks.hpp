@@ -1,6 +1,7 @@
 #pragma once
 // What a seeded motion study (`imucal montecarlo --sim-config ... --out-json`) must show for a motion that
-// determines every parameter (or all but those named open): each converged in every run, none beyond 4.5 sigma, and pooled over the
+// determines every parameter (or all but those named open): no run refused, each converged in every run and
+// never beyond 4 sigma, none beyond 4.5 sigma, and pooled over the
 // parameters an error RMS the bound's size and error / sigma of unit RMS, within +-20 % (300 values for
 // ten seeds of 30 parameters: honest sigmas land well inside, a sigma half or twice its true size not).
 #include <gtest/gtest.h>
@@ -16,12 +17,14 @@ namespace imucal::testing {
 // required to converge.
 inline void expectHonestStudy(const nlohmann::json& mc, std::size_t parameters, const std::set<std::string>& open = {}) {
   ASSERT_EQ(mc["parameters"].size(), parameters);
+  EXPECT_EQ(mc["refused"].get<int>(), 0) << mc["first_refusal"];
   double ratio2 = 0.0, z2 = 0.0;
   for (const auto& [name, p] : mc["parameters"].items()) {
     if (open.count(name) == 0) {
       EXPECT_EQ(p["converged_fraction"].get<double>(), 1.0) << name;
     }
     EXPECT_LT(p["z_worst"].get<double>(), 4.5) << name;
+    EXPECT_EQ(p["converged_beyond_4_sigma"].get<int>(), 0) << name;
     double bound = 0.0, error = 0.0;
     for (const auto& [key, value] : p.items()) {
       if (key.rfind("bound_", 0) == 0) bound = value.get<double>();

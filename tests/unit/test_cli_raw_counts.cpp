@@ -115,6 +115,10 @@ TEST(CliRawCounts, HalfAgainOffTheDatasheetWithLargeOffsetsReachesTheAnswer) {
   }
   // Gravity's magnitude, and with it the accelerometer z bias, is the config's own unknown.
   EXPECT_GE(converged, 27);
+  // Where the passes started is in the result and on the terminal.
+  EXPECT_EQ(result["start"].get<std::string>().rfind("start: the first pass linearizes at a fit of the stills (", 0), 0u)
+      << result["start"];
+  EXPECT_NE(r.output.find("start: the first pass linearizes at a fit of the stills"), std::string::npos) << r.output;
   EXPECT_LT(result["stats"]["velocity_nis_mean"].get<double>(), 2.0);
 }
 
@@ -154,11 +158,13 @@ void firstPart(const std::string& from, const std::string& to, double t1) {
 
 // The same recording's first half (36.5 s: the flat and nose-up turns, part of the right-side one) from the
 // 30 % prior. Linearized first at the prior mean (a first pass feeding back from there, then open-loop
-// refinements), its passes ran away: -2 log-likelihood 3.3e6 after 2 passes, 3.8e10 after 5 (zero-velocity
-// mean NIS 3.4e6), 1.2e11 after 20; a refinement pass that fits worse than the best before it is no longer
-// taken, but from there no pass reaches the answer. Linearized first at the start the stills give (see
-// core/start_point.hpp), every parameter holds the truth.
-TEST(CliRawCounts, AStartFromTheStillsReachesTheAnswerWhereThePriorMeanRanAway) {
+// refinements), its passes once ran away: -2 log-likelihood 3.3e6 after 2 passes, 1.2e11 after 20
+// (zero-velocity mean NIS 3.4e6), with the filter's noise taken as the readings' whatever their gain. Since
+// the noise reaches the corrected values through the gain (an axis read at 0.8 of its nominal carries 1.25
+// times the noise) they settle from there too; the recording on which the prior mean still runs away is
+// StartPoint.FromThePriorMeanTheLoopRunsAwayFromTheStartItDoesNot. Linearized first at the start the stills
+// give (see core/start_point.hpp), every parameter holds the truth.
+TEST(CliRawCounts, AStartFromTheStillsReachesTheAnswerOnHalfTheRecording) {
   imucal::testing::ScratchDir scratch;
   const auto path = [&](const std::string& name) { return (scratch.path() / name).string(); };
   simulateCounts(scratch.path());
@@ -171,13 +177,13 @@ TEST(CliRawCounts, AStartFromTheStillsReachesTheAnswerWhereThePriorMeanRanAway) 
   imucal::CalibrateOptions from_prior_mean;
   from_prior_mean.start_from_stills = false;
   // The loop the start was made for: without the still gyro's zero rate, which since holds the vertical
-  // gyro terms at every pose and keeps even the prior mean's passes from running away (below).
+  // gyro terms at every pose.
   imucal::FilterConfig without_zero_rate = config.filter;
   without_zero_rate.measurements.zero_rate = false;
   const imucal::CalibrationResult old_loop = imucal::calibrate(imu, heading, without_zero_rate, from_prior_mean);
   const imucal::CalibrationResult prior_mean_with_zero_rate = imucal::calibrate(imu, heading, config.filter, from_prior_mean);
   const imucal::CalibrationResult started = imucal::calibrate(imu, heading, config.filter, {});
-  EXPECT_GT(old_loop.stats.velocity_nis_mean, 100.0);
+  EXPECT_LT(old_loop.stats.velocity_nis_mean, 2.0);
   EXPECT_LT(prior_mean_with_zero_rate.stats.velocity_nis_mean, 2.0);
   EXPECT_LT(started.stats.velocity_nis_mean, 2.0);
   EXPECT_NE(started.start.find("start: the first pass linearizes at a fit of the stills"), std::string::npos) << started.start;

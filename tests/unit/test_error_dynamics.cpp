@@ -327,6 +327,37 @@ TEST(ErrorDynamics, PropagateIsFirstOrderPhiPPhiTPlusQ) {
   EXPECT_EQ(Z.block(L::kGyroBias + 3, L::kGyroBias + 3, p, p).norm(), 0.0);
 }
 
+// The configured (or measured) densities are of the readings; the filter's noise is on the corrected
+// values, gain^-1 (reading - bias). Worked by hand: an accelerometer read at gains 1.5 / 0.5 / 1 and a
+// gyro at 1 / 1 / 0.25, the body turned 90 deg about the vertical (NED x = body y). Over dt from P = 0,
+// velocity north takes body y's q / 0.5^2 = 4 q dt, east body x's q / 1.5^2 dt, down q dt; attitude
+// down takes the gyro's z q / 0.25^2 = 16 q dt; no axis couples to another.
+TEST(ErrorDynamics, ReadingNoiseReachesTheCorrectedValueThroughTheGain) {
+  FilterConfig config;
+  config.noise.accel_white = 0.003;
+  config.noise.gyro_white = 2e-4;
+  const StateLayout layout = StateLayout::make(config.model, false);
+  const ErrorDynamics dyn(layout, config);
+  Linearization lin;
+  lin.c_bn = eulerToQuat(0.0, 0.0, units::kPi / 2.0).toRotationMatrix();
+  lin.f_b = Vec3(0.0, 0.0, -9.8);
+  lin.accel_gain_inv = Vec3(1.0 / 1.5, 1.0 / 0.5, 1.0).asDiagonal();
+  lin.gyro_gain_inv = Vec3(1.0, 1.0, 4.0).asDiagonal();
+  StateMat P = StateMat::Zero(layout.size, layout.size);
+  const double dt = 0.01, qv = 0.003 * 0.003, qa = 2e-4 * 2e-4;
+  dyn.propagate(P, lin, dt);
+  const double tol = 1e-12 * qv * dt;
+  EXPECT_NEAR(P(L::kVel + 0, L::kVel + 0), 4.0 * qv * dt, tol);
+  EXPECT_NEAR(P(L::kVel + 1, L::kVel + 1), qv / 2.25 * dt, tol);
+  EXPECT_NEAR(P(L::kVel + 2, L::kVel + 2), qv * dt, tol);
+  EXPECT_NEAR(P(L::kPos + 0, L::kVel + 0), 4.0 * qv * dt * dt / 2.0, tol);
+  EXPECT_NEAR(P(L::kPos + 0, L::kPos + 0), 4.0 * qv * dt * dt * dt / 3.0, tol);
+  EXPECT_NEAR(P(L::kVel + 0, L::kVel + 1), 0.0, tol);
+  EXPECT_NEAR(P(L::kAtt + 0, L::kAtt + 0), qa * dt, 1e-12 * qa * dt);
+  EXPECT_NEAR(P(L::kAtt + 1, L::kAtt + 1), qa * dt, 1e-12 * qa * dt);
+  EXPECT_NEAR(P(L::kAtt + 2, L::kAtt + 2), 16.0 * qa * dt, 1e-12 * qa * dt);
+}
+
 TEST(ErrorDynamics, JosephScalarUpdateEqualsDenseJoseph) {
   const int n = 21;
   std::mt19937_64 rng(5);
