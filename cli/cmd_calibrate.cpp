@@ -120,12 +120,6 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
 // The history is for plots; more epochs than this show nothing more and cost 0.5 kB each.
 constexpr std::size_t kMaxHistoryEpochs = 20000;
 
-std::string joinLines(const std::vector<std::string>& lines) {
-  std::string out;
-  for (const auto& l : lines) out += (out.empty() ? "" : "; ") + l;
-  return out;
-}
-
 std::vector<std::string> exportPaths(const CalibrateArgs& args) {
   std::vector<std::string> out;
   for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins})
@@ -223,7 +217,7 @@ void runCalibrateCommand(const CalibrateArgs& args) {
                 << (std::filesystem::exists(path) ? "; the file there is from an earlier run)" : ")") << '\n';
     throw ResultRefused(std::string(model_misfit ? "the model does not describe this recording"
                                                  : "the estimate is not a sensor's") +
-                        ", so no estimate or sigma can be trusted (" + joinLines(problems) + "); " + args.out +
+                        ", so no estimate or sigma can be trusted (" + joinReasons(problems) + "); " + args.out +
                         " keeps the numbers, marked refused");
   }
 }

@@ -37,4 +37,10 @@ std::vector<std::string> inconsistencies(const CalibrationResult& result, const 
   return out;
 }
 
+std::string joinReasons(const std::vector<std::string>& reasons) {
+  std::string out;
+  for (const std::string& r : reasons) out += (out.empty() ? "" : "; ") + r;
+  return out;
+}
+
 }  // namespace imucal

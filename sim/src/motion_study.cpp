@@ -23,12 +23,6 @@ struct RunOutcome {
   int passes = 0;
 };
 
-std::string joined(const std::vector<std::string>& reasons) {
-  std::string out;
-  for (const std::string& r : reasons) out += (out.empty() ? "" : "; ") + r;
-  return out;
-}
-
 }  // namespace
 
 MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions& options) {
@@ -91,7 +85,7 @@ MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions&
     report.run_z_rms.push_back(std::sqrt((o.error.array() / o.sigma.array()).square().mean()));
     report.passes.push_back(o.passes);
     if (o.refusal.empty()) continue;
-    if (report.refused++ == 0) report.first_refusal = joined(o.refusal);
+    if (report.refused++ == 0) report.first_refusal = joinReasons(o.refusal);
   }
   return report;
 }

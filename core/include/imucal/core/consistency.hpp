@@ -20,4 +20,7 @@ struct ConsistencyLimits {
 // The reasons the result cannot be trusted, in words for a user; empty when there is none.
 std::vector<std::string> inconsistencies(const CalibrationResult& result, const ConsistencyLimits& limits = {});
 
+// Reasons (these or any others a result was refused for) as one line, "; " between them.
+std::string joinReasons(const std::vector<std::string>& reasons);
+
 }  // namespace imucal
