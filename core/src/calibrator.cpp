@@ -104,7 +104,8 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   filter.setWhiteness(&whiteness);
   IncrementConsistencyCheck increments(layout.paramCount());
   filter.setIncrementCheck(&increments);
-  // The filter steps once per `per_step` samples (see imu_increment.hpp); the last step takes what is left.
+  // The filter steps once per `per_step` samples (see imu_increment.hpp), or several times that at rest;
+  // the last step takes what is left. At most this many steps:
   const std::size_t steps = (imu.size() - 1 + per_step - 1) / per_step;
   const std::size_t stride =
       max_history_epochs == 0 ? 1 : std::max<std::size_t>(1, (steps + max_history_epochs - 1) / max_history_epochs);
@@ -135,7 +136,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
   for (std::size_t k = 1; k < imu.size(); ++k) {
     const bool stepped = stepper.addImu(imu[k], k + 1 == imu.size(), held[k], resting[k]);
     // NaN never turns finite again, so checking the recorded epochs (always the last) misses none.
-    if (stepped && (stepper.steps() % stride == 0 || stepper.steps() == steps)) record(k);
+    if (stepped && (stepper.steps() % stride == 0 || k + 1 == imu.size())) record(k);
   }
   out.stats = stepper.stats();
   out.params = filter.estimatedParams();
@@ -173,11 +174,13 @@ double scalarUpdates(const MeasurementStats& s) {
          static_cast<double>(s.heading_updates + s.zero_rate_updates);
 }
 
-// Whether pass `next` fit worse than `best` beyond chance (a pass that turned non-finite fits worst).
-bool fitsWorse(const PassOutput& next, const PassOutput& best) {
+// Whether pass `next` fit worse than the best fit so far beyond chance (a pass that turned non-finite fits
+// worst). Measured from the best, not from the pass last kept: passes each a little worse than the one
+// before would otherwise walk, within the tolerance every time, far along a direction the data do not see.
+bool fitsWorse(const PassOutput& next, double best_log_likelihood, const MeasurementStats& best_stats) {
   if (!std::isfinite(next.log_likelihood)) return true;
-  const double tolerance = kWorseFit + kWorseFitPerUpdate * scalarUpdates(best.stats);
-  return -2.0 * next.log_likelihood > -2.0 * best.log_likelihood + tolerance;
+  const double tolerance = kWorseFit + kWorseFitPerUpdate * scalarUpdates(best_stats);
+  return -2.0 * next.log_likelihood > -2.0 * best_log_likelihood + tolerance;
 }
 
 // Every pass keeps the original prior: later passes only move the point the model is linearized at, so a
@@ -197,6 +200,8 @@ PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<Head
   // The point the kept pass linearized about, and how many shorter steps from it failed in a row.
   VecX best_point = params;
   int backtracks = 0, kept = 0;
+  double best_log_likelihood = -std::numeric_limits<double>::infinity();
+  MeasurementStats best_stats;
   // The first pass feeds its corrections back as it goes, so its innovations are smaller than any open-loop
   // pass's, whatever the point: open-loop refinements are compared among themselves, from the first.
   // A start fitted from the stills is already near the answer: every pass linearizes open-loop about it
@@ -218,12 +223,12 @@ PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<Head
     out.passes_run = i + 1;
     // A pass that fit worse than the kept one says its starting point was worse: the step that led there is
     // not taken; half of it, from the kept pass's point, is tried next (a trust region on the passes).
-    if (i > first_compared && fitsWorse(pass, out.pass)) {
+    if (i > first_compared && fitsWorse(pass, best_log_likelihood, best_stats)) {
       if (++backtracks > kMaxBacktracks) {
         std::ostringstream why;
         why << "passes: the refinement kept pass " << kept << " of " << out.passes_run << ": "
             << backtracks << " steps from it in a row, down to 1/" << (1 << kMaxBacktracks)
-            << " of its step, fit the data worse (-2 log-likelihood " << -2.0 * out.pass.log_likelihood << ", then "
+            << " of its step, fit the data worse (-2 log-likelihood " << -2.0 * best_log_likelihood << ", then "
             << -2.0 * pass.log_likelihood << ")";
         out.kept_earlier = why.str();
         break;
@@ -234,6 +239,10 @@ PassesOutput runPasses(const std::vector<ImuSample>& imu, const std::vector<Head
     backtracks = 0;
     kept = i + 1;
     best_point = params;
+    if (i >= first_compared && pass.log_likelihood > best_log_likelihood) {
+      best_log_likelihood = pass.log_likelihood;
+      best_stats = pass.stats;
+    }
     out.pass = std::move(pass);
     const VecX sigma = paramSigmas(out.pass.P, layout);
     out.previous_step = out.step;

@@ -57,14 +57,17 @@ Side side(const std::vector<ImuSample>& imu, std::size_t first, std::size_t coun
   return s;
 }
 
-// One move after a still: the gravity measured at the still, the gyro (the still's mean taken off) through
-// the move, and the accelerometer's direction where it reads about the still's magnitude (little linear
-// acceleration), every few samples and at the next still.
+// One move after a still: the gravity's direction at the still, and the accelerometer's direction where it
+// reads about the still's magnitude (little linear acceleration), every few samples and at the next still,
+// each with the gyro's angle increment (rate minus the still's mean, times dt) summed since the check before.
+// A scale and an axis set act linearly on the summed increment, so each candidate integrates one rotation
+// per check instead of one per sample (within a few samples the axis barely moves: the coning left out is
+// far below the tens of degrees this check looks for).
 struct TiltMove {
-  Vec3 f_before;
-  std::vector<Vec3> rate;
-  std::vector<double> dt;
-  std::vector<std::pair<std::size_t, Vec3>> checks;  // (rates integrated before it, measured direction)
+  Vec3 up_before;          // the still's specific force direction
+  std::vector<Vec3> turn;  // angle increment since the previous check, rad in the gyro's axes
+  std::vector<Vec3> seen;  // measured specific force direction (unit) at the check
+  std::vector<int> weight; // samples the check stands for (the next still's are one check)
 };
 
 Mat3 signedPermutation(const std::array<int, 3>& axes) {
@@ -76,20 +79,25 @@ Mat3 signedPermutation(const std::array<int, 3>& axes) {
 // The median angle between the gravity direction the gyro carries through the move and the measured one.
 double carriedError(const TiltMove& m, const Mat3& axes, double scale) {
   Quat q = Quat::Identity();  // body at the move's start <- body now
-  std::vector<double> e;
-  e.reserve(m.checks.size());
-  std::size_t next = 0;
-  for (std::size_t i = 0; i <= m.rate.size() && next < m.checks.size(); ++i) {
-    while (next < m.checks.size() && m.checks[next].first == i)
-      e.push_back(angleBetween(q.toRotationMatrix().transpose() * m.f_before, m.checks[next++].second));
-    if (i == m.rate.size()) break;
-    const Vec3 angle = scale * m.dt[i] * (axes * m.rate[i]);
+  // Angle grows as its cosine falls: the median angle is that of the median cosine, with no arctangent
+  // per check (this runs for every candidate axis set and scale).
+  std::vector<std::pair<double, int>> minus_cos;
+  minus_cos.reserve(m.seen.size());
+  int total = 0;
+  for (std::size_t k = 0; k < m.seen.size(); ++k) {
+    const Vec3 angle = scale * (axes * m.turn[k]);
     const double a = angle.norm();
     if (a > 0.0) q = (q * Quat(Eigen::AngleAxisd(a, angle / a))).normalized();
+    minus_cos.emplace_back(-(q.conjugate() * m.up_before).dot(m.seen[k]), m.weight[k]);
+    total += m.weight[k];
   }
-  const auto mid = e.begin() + static_cast<std::ptrdiff_t>(e.size() / 2);
-  std::nth_element(e.begin(), mid, e.end());
-  return *mid;
+  std::sort(minus_cos.begin(), minus_cos.end());
+  int below = 0;
+  for (const auto& [c, w] : minus_cos) {
+    below += w;
+    if (2 * below > total) return std::acos(std::clamp(-c, -1.0, 1.0));
+  }
+  return 0.0;  // no checks: not reached, a move has at least ten
 }
 
 double medianError(const std::vector<TiltMove>& moves, const Mat3& axes, double scale) {
@@ -231,22 +239,42 @@ GyroAxisCheck checkGyroAxes(const std::vector<ImuSample>& imu, const std::vector
     }
     const double n = static_cast<double>(a1 - a0 + 1);
     TiltMove m;
-    m.f_before = f_before / n;
+    f_before /= n;
     bias /= n;
-    const double g = m.f_before.norm();
+    const double g = f_before.norm();
+    m.up_before = f_before / g;
     double tilt = 0.0;
     bool saturated = false;
+    Vec3 turn = Vec3::Zero();
+    // The next still reads one direction: its quiet samples are one check, weighted by their number.
+    Vec3 still_sum = Vec3::Zero();
+    int still_checks = 0, checks = 0;
     for (std::size_t i = a1 + 1; i <= end; ++i) {
       saturated = saturated || imu[i].saturated != 0;
-      m.rate.push_back(0.5 * (imu[i].gyro + imu[i - 1].gyro) - bias);
-      m.dt.push_back(imu[i].t - imu[i - 1].t);
-      const bool at_still = still[i];
-      if (((i - a1) % 5 == 0 || at_still) && std::abs(imu[i].accel.norm() - g) < kQuietLinear * g) {
-        m.checks.push_back({m.rate.size(), imu[i].accel});
-        tilt = std::max(tilt, angleBetween(m.f_before, imu[i].accel));
+      turn += (imu[i].t - imu[i - 1].t) * (0.5 * (imu[i].gyro + imu[i - 1].gyro) - bias);
+      const bool quiet = std::abs(imu[i].accel.norm() - g) < kQuietLinear * g;
+      if (still[i]) {
+        if (quiet) {
+          still_sum += imu[i].accel;
+          ++still_checks;
+        }
+      } else if ((i - a1) % 5 == 0 && quiet) {
+        m.turn.push_back(turn);
+        m.seen.push_back(imu[i].accel.normalized());
+        m.weight.push_back(1);
+        ++checks;
+        turn.setZero();
+        tilt = std::max(tilt, angleBetween(f_before, imu[i].accel));
       }
     }
-    if (!saturated && tilt >= kMinTilt && m.checks.size() >= 10) moves.push_back(std::move(m));
+    if (still_checks > 0) {
+      m.turn.push_back(turn);
+      m.seen.push_back(still_sum.normalized());
+      m.weight.push_back(still_checks);
+      checks += still_checks;
+      tilt = std::max(tilt, angleBetween(f_before, still_sum));
+    }
+    if (!saturated && tilt >= kMinTilt && checks >= 10) moves.push_back(std::move(m));
   }
   out.moves = static_cast<int>(moves.size());
   if (moves.empty()) return out;

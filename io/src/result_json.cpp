@@ -61,6 +61,7 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
               {"parameter_order", result.names},
               {"stats",
                {{"zero_velocity_updates", s.zero_velocity_updates},
+                {"zero_velocity_seconds", s.zero_velocity_seconds},
                 {"position_updates", s.position_updates},
                 {"heading_updates", s.heading_updates},
                 {"heading_rejected", s.heading_rejected},

@@ -104,6 +104,35 @@ TEST(FilterRate, SigmaAndEstimateAgreeAcrossRates) {
   }
 }
 
+// At rest a step spans five (MeasurementConfig::steps_merged_at_rest), the pseudo-observations' sigma
+// divided by sqrt(5): the stills cost a fifth and tell what they told in 10 ms steps.
+TEST(FilterRate, StepsMergedAtRestKeepTheStillsInformation) {
+  FilterConfig merged = withSimulatedGravity();
+  merged.measurements.zero_rate = true;
+  ASSERT_EQ(merged.measurements.steps_merged_at_rest, 5);
+  FilterConfig every = merged;
+  every.measurements.steps_merged_at_rest = 1;
+  const sim::SimOutput sim = sim::simulate(scenario(100.0, 4), 4);
+  const CalibrationResult a = calibrate(sim.imu, sim.heading, merged);
+  const CalibrationResult b = calibrate(sim.imu, sim.heading, every);
+  // 20 s of the paper's 30 at rest: about 400 steps of 50 ms and 1000 of 10 ms (the turn's slow ends may
+  // read as still).
+  EXPECT_EQ(b.history.size(), 3001u);
+  EXPECT_LT(a.history.size(), 1600u);
+  EXPECT_GT(a.history.size(), 1300u);
+  // Turned about its centre: held throughout, in either steps.
+  EXPECT_NEAR(a.stats.zero_velocity_seconds, 30.0, 1e-6);
+  EXPECT_NEAR(b.stats.zero_velocity_seconds, 30.0, 1e-6);
+  VecX truth(6);
+  truth << sim.applied_errors.accel.bias, sim.applied_errors.gyro.bias;
+  for (int j = 0; j < 6; ++j) {
+    const std::string& name = a.names[static_cast<std::size_t>(j)];
+    EXPECT_NEAR(a.sigma(j) / b.sigma(j), 1.0, 0.02) << name;
+    EXPECT_LT(std::abs(a.estimate(j) - b.estimate(j)), 0.1 * b.sigma(j)) << name;
+    EXPECT_LT(std::abs(a.estimate(j) - truth(j)), 4.0 * a.sigma(j)) << name;
+  }
+}
+
 TEST(FilterRate, InformationBoundDoesNotDependOnTheSensorRate) {
   const auto& per_rate = runs().front();
   const BoundResult& base = per_rate.front().bound;

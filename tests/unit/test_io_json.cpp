@@ -42,6 +42,7 @@ CalibrationResult sampleResult() {
   r.converged = {true, true, false};
   r.convergence_time = Eigen::Vector3d(3.5, 12.0, std::numeric_limits<double>::quiet_NaN());
   r.stats.zero_velocity_updates = 2000;
+  r.stats.zero_velocity_seconds = 20.0;
   r.stats.heading_updates = 3000;
   r.stats.heading_rejected = 4;
   r.stats.heading_nis_mean = 0.97;
@@ -85,6 +86,7 @@ TEST(IoJson, ResultHasHumanAndSiUnitsPerParameter) {
 
   EXPECT_EQ(j["parameter_order"], nlohmann::json({"accel_bias_x", "gyro_bias_z", "accel_scale_y"}));
   EXPECT_EQ(j["stats"]["zero_velocity_updates"], 2000);
+  EXPECT_EQ(j["stats"]["zero_velocity_seconds"], 20.0);
   EXPECT_EQ(j["stats"]["heading_rejected"], 4);
   EXPECT_EQ(j["passes"], 3);
   EXPECT_EQ(j["duration_s"], 30.0);

@@ -83,6 +83,11 @@ struct MeasurementConfig {
   // A run whose vertical rate is beyond this many sigma of what the prior allows a gyro at rest is no still
   // (a slow turn): rejected (0: no gate).
   double zero_rate_gate_sigma = 5.0;
+  // A step whose samples are all still and held spans this many ordinary steps (1: none merged). At rest
+  // nothing in the model moves fast, and the pseudo-observations, white noise per step, keep their
+  // information per second with their sigma divided by the square root of the steps merged: the stills,
+  // most of a multi-position recording, cost a fifth.
+  int steps_merged_at_rest = 5;
 };
 
 // What earlier calibrations of the same sensor found, carried into the next one as its prior (the daemon's

@@ -1,6 +1,6 @@
 #pragma once
 // Drives an initialized filter through a stream of IMU and heading samples: one filter step per
-// `per_step` IMU samples (see imu_increment.hpp), the pseudo-observations after each step, and each heading
+// `per_step` IMU samples (see imu_increment.hpp; several such at rest), the pseudo-observations after each step, and each heading
 // at its own time (a heading inside a step splits it there). The calibrator's passes and the daemon's live
 // estimate both step through this, so a running estimate and the final one see the data the same way.
 #include <cstddef>
@@ -18,6 +18,7 @@ namespace imucal {
 
 struct MeasurementStats {
   long zero_velocity_updates = 0;
+  double zero_velocity_seconds = 0.0;  // span of the steps that ended held (zero velocity applied)
   long position_updates = 0;
   long heading_updates = 0;
   long heading_rejected = 0;      // failed the innovation gate
@@ -73,9 +74,11 @@ class FilterStepper {
   std::deque<Heading> headings_;
   std::vector<ImuSample> pending_;  // the step's samples not yet predicted over
   std::size_t in_step_ = 0;         // samples of the current step so far
+  bool step_at_rest_ = false;       // every sample of the current step still and held
   std::size_t steps_ = 0;
   ImuSample previous_;
   bool has_previous_ = false;
+  double step_start_ = 0.0;  // filter time at the current step's start
   double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0, position_nis_sum_ = 0.0, zero_rate_nis_sum_ = 0.0;
   StillRunMean still_run_;
   MeasurementStats stats_;
