@@ -1,7 +1,8 @@
 // Cost of calibrating a multi-position recording of the shape imu_tk is timed on (configs/poses-sim.yaml:
 // 38 still poses placed by hand, 37 moves of 30-180 deg about random axes at up to 260 deg/s, 511 s at
 // 100 Hz, no heading), free moves, the full sensor model with its sigmas (and the halves check, as `imucal calibrate`
-// runs it). Reported per calibration: wall time (the benchmark's), CPU time (all threads) and passes.
+// runs it), with every step 10 ms and with five merged at rest (measurements.steps_merged_at_rest: 5).
+// Reported per calibration: wall time (the benchmark's), CPU time (all threads) and passes.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -34,7 +35,8 @@ FilterConfig posesFilter() { return io::loadCalibrateConfig(std::string(IMUCAL_C
 
 void BM_Calibrate38Poses511s(benchmark::State& state) {
   const sim::SimOutput& data = posesRecording();
-  const FilterConfig cfg = posesFilter();
+  FilterConfig cfg = posesFilter();
+  cfg.measurements.steps_merged_at_rest = static_cast<int>(state.range(1));
   CalibrateOptions options;
   options.check_halves = state.range(0) != 0;
   int passes = 0;
@@ -51,6 +53,13 @@ void BM_Calibrate38Poses511s(benchmark::State& state) {
   state.counters["recording_s"] = data.imu.back().t - data.imu.front().t;
 }
 
-BENCHMARK(BM_Calibrate38Poses511s)->Arg(1)->Arg(0)->ArgNames({"halves"})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Calibrate38Poses511s)
+    ->Args({1, 1})
+    ->Args({0, 1})
+    ->Args({1, 5})
+    ->Args({0, 5})
+    ->ArgNames({"halves", "merged_at_rest"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace

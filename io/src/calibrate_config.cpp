@@ -215,6 +215,7 @@ void readMeasurements(YamlSection s, MeasurementConfig& m) {
   m.zero_rate_psd = std::pow(s.number("zero_rate_noise_deg_per_sqrt_h", std::sqrt(m.zero_rate_psd) / units::deg_per_sqrt_h,
                                       Range::nonNegative()) * units::deg_per_sqrt_h, 2);
   m.zero_rate_min_seconds = s.number("zero_rate_min_seconds", m.zero_rate_min_seconds, Range::positive());
+  m.steps_merged_at_rest = s.integer("steps_merged_at_rest", m.steps_merged_at_rest, Range::between(1, 20));
   m.zero_rate_gate_sigma = s.number("zero_rate_gate_sigma", m.zero_rate_gate_sigma, Range::nonNegative());
   s.finish();
 }

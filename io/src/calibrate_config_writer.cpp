@@ -133,6 +133,7 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
   emitNumber(out, "zero_rate_noise_deg_per_sqrt_h", std::sqrt(f.measurements.zero_rate_psd) / units::deg_per_sqrt_h);
   emitNumber(out, "zero_rate_min_seconds", f.measurements.zero_rate_min_seconds);
   emitNumber(out, "zero_rate_gate_sigma", f.measurements.zero_rate_gate_sigma);
+  out << YAML::Key << "steps_merged_at_rest" << YAML::Value << f.measurements.steps_merged_at_rest;
   out << YAML::EndMap;
 
   out << YAML::Key << "model" << YAML::Value << YAML::BeginMap;

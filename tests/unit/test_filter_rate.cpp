@@ -104,14 +104,14 @@ TEST(FilterRate, SigmaAndEstimateAgreeAcrossRates) {
   }
 }
 
-// At rest a step spans five (MeasurementConfig::steps_merged_at_rest), the pseudo-observations' sigma
-// divided by sqrt(5): the stills cost a fifth and tell what they told in 10 ms steps.
+// Asked to (MeasurementConfig::steps_merged_at_rest: 5), a step at rest spans five, the pseudo-observations'
+// sigma divided by sqrt(5): the stills cost a fifth and tell what they told in 10 ms steps.
 TEST(FilterRate, StepsMergedAtRestKeepTheStillsInformation) {
   FilterConfig merged = withSimulatedGravity();
   merged.measurements.zero_rate = true;
-  ASSERT_EQ(merged.measurements.steps_merged_at_rest, 5);
   FilterConfig every = merged;
-  every.measurements.steps_merged_at_rest = 1;
+  ASSERT_EQ(every.measurements.steps_merged_at_rest, 1);  // the default
+  merged.measurements.steps_merged_at_rest = 5;
   const sim::SimOutput sim = sim::simulate(scenario(100.0, 4), 4);
   const CalibrationResult a = calibrate(sim.imu, sim.heading, merged);
   const CalibrationResult b = calibrate(sim.imu, sim.heading, every);
