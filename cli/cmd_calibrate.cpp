@@ -22,6 +22,7 @@
 #include "imucal/io/atomic_file.hpp"
 #include "imucal/io/calibration_plot.hpp"
 #include "imucal/io/errors.hpp"
+#include "imucal/io/euroc_csv.hpp"
 #include "imucal/io/intrinsics_output.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/io/param_units.hpp"
@@ -39,6 +40,7 @@ struct CalibrateArgs {
   std::string intrinsics;
   std::string kalibr;
   std::string openvins;
+  std::string corrected_euroc;
   std::string plot;
 };
 
@@ -122,7 +124,7 @@ constexpr std::size_t kMaxHistoryEpochs = 20000;
 
 std::vector<std::string> exportPaths(const CalibrateArgs& args) {
   std::vector<std::string> out;
-  for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins})
+  for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins, &args.corrected_euroc})
     if (!p->empty()) out.push_back(*p);
   return out;
 }
@@ -157,6 +159,19 @@ std::string writeExports(const CalibrateArgs& args, const io::CalibrateConfig& c
   if (!args.openvins.empty()) {
     io::writeFileAtomically(args.openvins, io::openVinsImuYaml(result, exported, intrinsics, rate));
     std::cout << "wrote " << args.openvins << '\n';
+  }
+  if (!args.corrected_euroc.empty()) {
+    // The recording as the calibration corrects it, for tools that read no intrinsics (VINS-Fusion,
+    // ORB-SLAM3, robot_localization): the same correction as the filter's, with what did not converge
+    // at its prior mean, as in the intrinsics.
+    const ImuErrorModel model = toCalibrationParams(result.layout, exported.estimate, effective.model).imu;
+    std::vector<ImuSample> corrected = recording.imu;
+    for (ImuSample& s : corrected) {
+      s.accel = model.correctAccel(s.accel);
+      s.gyro = model.correctGyro(s.gyro, s.accel);
+    }
+    io::writeEurocImuCsv(args.corrected_euroc, corrected, recording.time_origin_ns);
+    std::cout << "wrote " << args.corrected_euroc << " (" << corrected.size() << " corrected samples)\n";
   }
   if (!exported.at_prior.empty())
     std::cout << "intrinsics: " << exported.at_prior.size()
@@ -236,6 +251,8 @@ void addCalibrateCommand(CLI::App& app) {
   cmd->add_option("--kalibr", args->kalibr, "Also write the intrinsics as a Kalibr IMU YAML (scale-misalignment model)");
   cmd->add_option("--openvins", args->openvins,
                   "Also write the intrinsics as OpenVINS's kalibr_imu_chain.yaml (model kalibr: Tw, R_IMUtoGYRO, Ta, R_IMUtoACC, Tg)");
+  cmd->add_option("--corrected-euroc", args->corrected_euroc,
+                  "Also write the recording corrected by the calibration as EuRoC IMU CSV (ns, rad/s, m/s^2)");
   cmd->add_option("--plot", args->plot,
                   "Also write an SVG of every estimated parameter's estimate +- 1-sigma over time, moves shaded");
   cmd->add_option("--truth", args->truth, "truth.json from `imucal simulate`: print the error of each estimate (and draw the truth in --plot)")->check(CLI::ExistingFile);

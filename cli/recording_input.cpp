@@ -8,12 +8,21 @@
 #include "imucal/core/magnetometer_heading.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/csv_reader.hpp"
+#include "imucal/io/euroc_csv.hpp"
+#include "imucal/io/mcap.hpp"
+#include "imucal/io/rosbag2.hpp"
+#include "imucal/io/ros1_bag.hpp"
 #include "imucal/io/timing_checks.hpp"
 
 namespace imucal::cli {
 
 void addRecordingOptions(CLI::App& cmd, RecordingArgs& args) {
-  cmd.add_option("--imu", args.imu, "IMU CSV")->check(CLI::ExistingFile);
+  cmd.add_option("--imu", args.imu,
+                 "IMU CSV, EuRoC CSV, ROS 1 bag, MCAP, rosbag2 .db3 or rosbag2 folder (sensor_msgs/Imu; a "
+                 "MagneticField topic gives heading)")
+      ->check(CLI::ExistingPath);
+  cmd.add_option("--imu-topic", args.imu_topic, "The bag's IMU topic, when it holds several");
+  cmd.add_option("--mag-topic", args.mag_topic, "The bag's magnetometer topic, when it holds several");
   cmd.add_option("--lcm-log", args.lcm_log, "LCM log (lcm-logger) with IMUCAL_IMU / IMUCAL_HEADING messages")->check(CLI::ExistingFile);
   cmd.add_option("--sensor-id", args.sensor_id, "Sensor to take from the LCM log")->capture_default_str();
   cmd.add_option("--heading", args.heading, "Heading CSV (rad clockwise from north unless the config says)")->check(CLI::ExistingFile);
@@ -58,6 +67,53 @@ void carryClockUncertainty(const std::string& path, const SampleClockEstimate& c
   }
 }
 
+// Where the IMU's times count from its first stamp (a bag, EuRoC's ns stamps), a heading or magnetometer
+// file stamped since the epoch (beyond 1e8 s, three years) counts from it too; one that already starts
+// near zero is taken as it is.
+template <class Sample>
+void shiftToOrigin(std::vector<Sample>& samples, std::int64_t origin_ns) {
+  if (origin_ns == 0 || samples.empty() || samples.front().t < 1e8) return;
+  const double origin = static_cast<double>(origin_ns / 1000000000) + static_cast<double>(origin_ns % 1000000000) * 1e-9;
+  for (Sample& s : samples) s.t -= origin;
+}
+
+// The ROS storage the path holds, recognized by content ("" for none: a CSV).
+std::string rosFormatOf(const std::string& path) {
+  if (path.empty()) return "";
+  if (io::isRosbag2Folder(path)) return "rosbag2 folder";
+  if (io::looksLikeRos1Bag(path)) return "ROS 1 bag";
+  if (io::looksLikeMcap(path)) return "MCAP";
+  if (io::looksLikeSqlite(path)) return "rosbag2 sqlite3";
+  return "";
+}
+
+// A ROS recording's IMU (and magnetometer, if it has one and no other heading was given).
+std::vector<MagSample> loadRos(const RecordingArgs& args, const io::CalibrateConfig& config, const std::string& format,
+                               Recording& r) {
+  io::TopicChoice choice;
+  choice.imu_topic = args.imu_topic;
+  choice.mag_topic = args.mag_topic;
+  io::RosRecording bag = format == "rosbag2 folder" ? io::readRosbag2Folder(args.imu, choice)
+                         : format == "rosbag2 sqlite3" ? io::readRosbag2Db3(args.imu, choice)
+                         : format == "MCAP"            ? io::readMcap(args.imu, choice)
+                                                       : io::readRos1Bag(args.imu, choice);
+  r.imu_format = format;
+  std::cout << args.imu << ": " << r.imu_format << ", " << bag.imu.size() << " IMU samples from " << bag.imu_topic;
+  if (!bag.mag_topic.empty()) std::cout << ", " << bag.mag.size() << " magnetometer samples from " << bag.mag_topic;
+  std::cout << " (FLU to FRD)\n";
+  if (bag.unindexed)
+    std::cerr << "imucal: warning: " << args.imu << ": rosbag never closed this bag (no index): read as far as it goes\n";
+  if (bag.stamps_from_record_time)
+    std::cerr << "imucal: warning: " << args.imu << ": every header.stamp on " << bag.imu_topic
+              << " is zero; the times the recorder received the messages are used instead\n";
+  io::checkImuTiming(bag.imu, config.imu.max_gap, "s", [&](std::size_t i) {
+    return args.imu + ": message " + std::to_string(bag.imu_messages[i]) + " on " + bag.imu_topic + ": ";
+  });
+  r.imu = std::move(bag.imu);
+  r.time_origin_ns = bag.first_stamp_ns;
+  return std::move(bag.mag);
+}
+
 }  // namespace
 
 Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) {
@@ -71,12 +127,22 @@ Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) 
       std::cerr << "imucal: warning: " << args.lcm_log << ": " << log.skipped_bytes << " bytes between events were no event (skipped)\n";
     if (log.truncated) std::cerr << "imucal: warning: " << args.lcm_log << ": the last event is cut short (ignored)\n";
     r.imu = std::move(log.imu);
+    r.imu_format = "LCM log";
     r.heading = std::move(log.heading);
     io::checkImuTiming(r.imu, config.imu.max_gap, "us",
                        [&](std::size_t i) { return args.lcm_log + ": IMU sample " + std::to_string(i + 1) + ": "; });
     warnIfPartial(headingTimes(r.heading), r.imu, args.lcm_log + " (heading)");
-  } else {
-    r.imu = io::readImuCsv(args.imu, config.imu, &r.clock);
+  }
+  std::vector<MagSample> bag_mag;
+  if (const std::string ros = rosFormatOf(args.imu); !ros.empty()) {
+    bag_mag = loadRos(args, config, ros, r);
+  } else if (!args.imu.empty()) {
+    if (io::looksLikeEurocImu(args.imu)) {
+      config.imu = io::eurocImuFormat(config.imu);
+      r.imu_format = "EuRoC CSV";
+      std::cout << args.imu << ": EuRoC CSV (ns, rad/s, m/s^2, the sensor's frame as it is)\n";
+    }
+    r.imu = io::readImuCsv(args.imu, config.imu, &r.clock, &r.time_origin_ns);
     r.uniform_time_base = io::retimesUniformly(config.imu, r.clock);
     if (r.uniform_time_base) carryClockUncertainty(args.imu, r.clock, config.filter);
   }
@@ -85,13 +151,17 @@ Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) 
   }
   if (!args.heading.empty()) {
     r.heading = io::readHeadingCsv(args.heading, config.heading);
+    shiftToOrigin(r.heading, r.time_origin_ns);
     warnIfPartial(headingTimes(r.heading), r.imu, args.heading);
   }
-  if (!args.mag.empty()) {
-    const std::vector<MagSample> mag = io::readMagCsv(args.mag, config.mag);
+  const bool mag_from_bag = args.heading.empty() && args.mag.empty() && !bag_mag.empty() && !args.no_heading;
+  if (!args.mag.empty() || mag_from_bag) {
+    const std::string mag_source = mag_from_bag ? args.imu + " (magnetometer)" : args.mag;
+    std::vector<MagSample> mag = mag_from_bag ? bag_mag : io::readMagCsv(args.mag, config.mag);
+    if (!mag_from_bag) shiftToOrigin(mag, r.time_origin_ns);
     std::vector<double> times;
     for (const auto& m : mag) times.push_back(m.t);
-    warnIfPartial(times, r.imu, args.mag);
+    warnIfPartial(times, r.imu, mag_source);
     const MagHeading mh = headingFromMagnetometer(mag, r.imu, config.mag_heading);
     r.heading = mh.heading;
     config.filter.measurements.heading_sigma = mh.sigma;

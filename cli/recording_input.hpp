@@ -1,7 +1,9 @@
 #pragma once
-// The recording a command works on: IMU from CSV or an LCM log, heading from a CSV, a magnetometer or the
-// log. Shared by `calibrate` and `diagnose` so both read input the same way.
+// The recording a command works on: IMU from CSV (ours or EuRoC's), a ROS 1 bag, an MCAP file, a rosbag2
+// .db3 or folder (each recognized by content) or an LCM log; heading from a CSV, a magnetometer (a CSV or
+// the bag's) or the log. Shared by `calibrate` and `diagnose` so both read input the same way.
 #include <CLI/CLI.hpp>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,10 +19,11 @@ struct RecordingArgs {
   std::string imu;
   std::string heading;
   std::string mag;
+  std::string imu_topic, mag_topic;  // a ROS bag's topics, when it holds several of a type
   bool no_heading = false;
 };
 
-// --imu, --lcm-log, --sensor-id, --heading, --mag, --no-heading.
+// --imu, --lcm-log, --sensor-id, --heading, --mag, --no-heading, --imu-topic, --mag-topic.
 void addRecordingOptions(CLI::App& cmd, RecordingArgs& args);
 
 struct Recording {
@@ -29,6 +32,9 @@ struct Recording {
   // What the IMU CSV's stamps said about the sample clock, and whether the uniform grid replaced them.
   SampleClockEstimate clock;
   bool uniform_time_base = false;
+  // What the samples' t = 0 is, in ns since the epoch (a bag's first stamp; 0 where t is that already).
+  std::int64_t time_origin_ns = 0;
+  std::string imu_format = "CSV";  // "CSV", "EuRoC CSV", "ROS 1 bag", "MCAP", "rosbag2 ...", "LCM log"
 };
 
 // Reads the recording; a magnetometer sets config.filter's heading sigma from its fit, and heading is

@@ -45,7 +45,7 @@ fi
 sysroot_packages=(
   libc6-dev libstdc++-12-dev libgcc-12-dev linux-libc-dev
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev libfmt-dev
-  libgtest-dev libgmock-dev liblcm-dev libglib2.0-dev libsystemd-dev libgpiod-dev
+  libgtest-dev libgmock-dev liblcm-dev libglib2.0-dev libsystemd-dev libgpiod-dev libbz2-dev liblz4-dev libzstd-dev zlib1g-dev libsqlite3-dev
 )
 stamp="$sysroot/.imucal-packages"
 want="$(printf '%s\n' "${sysroot_packages[@]}")"

@@ -6,6 +6,10 @@ packages=(
   build-essential cmake pkg-config iproute2 util-linux bc time
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # io/: the compressed chunks of ROS 1 bags (bzip2, LZ4 frames) and MCAP files (zstd, LZ4, CRC-32 from zlib).
+  libbz2-dev liblz4-dev libzstd-dev zlib1g-dev
+  # io/: rosbag2's sqlite3 storage.
+  libsqlite3-dev
   # LCM: C/C++ library (lcm.pc needs glib), lcm-gen, lcm.jar + lcm-spy, a JDK for the types jar,
   # and jchart2d, which lcm-spy's charts need but liblcm-java does not pull in (see scripts/lcm-spy).
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless libjchart2d-java

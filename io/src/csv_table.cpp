@@ -1,9 +1,11 @@
 #include "imucal/io/csv_table.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <string_view>
 
 #include "imucal/io/errors.hpp"
@@ -37,6 +39,15 @@ std::vector<std::string_view> splitFields(std::string_view line) {
 bool isSkipped(std::string_view line) {
   const auto t = trim(line);
   return t.empty() || t.front() == '#';
+}
+
+bool isCommentedHeader(std::string_view line, const std::vector<std::string>& names) {
+  if (line.empty() || line.front() != '#') return false;
+  line.remove_prefix(1);
+  const auto fields = splitFields(line);
+  for (const auto& name : names)
+    if (std::find(fields.begin(), fields.end(), name) == fields.end()) return false;
+  return true;
 }
 
 // A header of numbers means the file has no header row at all, which deserves its own hint.
@@ -92,9 +103,25 @@ double parseField(const std::string& path, long line, const std::string& column,
   return n.value;
 }
 
+// A whole number (with an optional sign) that fits 64 bits, exactly.
+bool parseWholeNumber(std::string_view text, std::int64_t& out) {
+  text = trim(text);
+  const bool negative = !text.empty() && text.front() == '-';
+  if (!text.empty() && (text.front() == '-' || text.front() == '+')) text.remove_prefix(1);
+  if (text.empty() || text.size() > 19) return false;
+  std::int64_t v = 0;
+  for (const char c : text) {
+    if (c < '0' || c > '9') return false;
+    if (v > (std::numeric_limits<std::int64_t>::max() - (c - '0')) / 10) return false;
+    v = v * 10 + (c - '0');
+  }
+  out = negative ? -v : v;
+  return true;
+}
+
 }  // namespace
 
-CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names) {
+CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names, bool integer_time) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throwInputError(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
 
@@ -115,7 +142,10 @@ CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string
     std::string_view line(raw);
     if (line_no == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);
     if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    if (isSkipped(line)) continue;
+    // EuRoC and TUM-VI write their header as a comment ("#timestamp [ns],w_RS_S_x [rad s^-1],..."): a
+    // comment before the header whose fields name every requested column is the header.
+    if (isSkipped(line) && !(csv.header.empty() && isCommentedHeader(line, names))) continue;
+    if (!line.empty() && line.front() == '#') line.remove_prefix(1);
     const auto fields = splitFields(line);
 
     if (csv.header.empty()) {
@@ -152,8 +182,18 @@ CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string
       throwInputError(path, line_no, "more than " + std::to_string(kMaxCsvRows) +
                                          " data rows, the most one run reads (about 130 bytes of memory each): "
                                          "split the recording");
-    for (std::size_t i = 0; i < names.size(); ++i)
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      if (i == 0 && integer_time) {
+        std::int64_t v = 0;
+        if (!parseWholeNumber(fields[field_of[0]], v))
+          throwInputError(path, line_no, "column '" + names[0] + "': not a whole number within 64 bits ('" +
+                                             excerpt(fields[field_of[0]]) + "')");
+        if (csv.lines.empty()) csv.integer_origin = v;
+        csv.values.push_back(static_cast<double>(v - csv.integer_origin));
+        continue;
+      }
       csv.values.push_back(parseField(path, line_no, names[i], fields[field_of[i]]));
+    }
     csv.lines.push_back(line_no);
   }
   if (in.bad()) throwInputError(path, line_no, std::string("read error: ") + std::strerror(errno));

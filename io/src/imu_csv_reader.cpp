@@ -21,11 +21,14 @@ bool isSixteenBitRail(double count, double offset) {
 
 }  // namespace
 
-std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format, SampleClockEstimate* clock) {
+std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format, SampleClockEstimate* clock,
+                                  std::int64_t* time_origin_ns) {
   const std::vector<std::string> names{format.time,    format.accel[0], format.accel[1], format.accel[2],
                                        format.gyro[0], format.gyro[1],  format.gyro[2]};
   checkDistinctColumns(path, names, {"time", "accel x", "accel y", "accel z", "gyro x", "gyro y", "gyro z"});
-  const CsvColumns csv = readCsvColumns(path, names);
+  const bool exact_ns = time_origin_ns != nullptr && format.time_unit == TimeUnit::Nanosecond;
+  const CsvColumns csv = readCsvColumns(path, names, exact_ns);
+  if (time_origin_ns != nullptr) *time_origin_ns = exact_ns ? csv.integer_origin : 0;
   checkTimeIncreasing(csv, 0, unitName(format.time_unit), unitFactor(format.time_unit));
 
   const double time_factor = unitFactor(format.time_unit);

@@ -25,7 +25,7 @@ void checkImuTiming(const std::vector<ImuSample>& imu, double max_gap, const std
   if (imu.size() < 2) return;
   const double step = medianStep(imu);
   if (step > kMaxImuSampleInterval) {
-    const char* hint = step > 500.0 ? "us" : "ms";
+    const char* hint = step > 5e5 ? "ns" : step > 500.0 ? "us" : "ms";
     throw InputError(where(0) + "the median time step is " + formatExact(step) + " s (read as " + time_unit +
                      "): no IMU is sampled that slowly; are the times in " + hint + "? (set time_unit)");
   }

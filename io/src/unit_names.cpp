@@ -15,10 +15,11 @@ struct Entry {
   double factor;
 };
 
-constexpr std::array<Entry<TimeUnit>, 3> kTime{{
+constexpr std::array<Entry<TimeUnit>, 4> kTime{{
     {TimeUnit::Second, "s", 1.0},
     {TimeUnit::Millisecond, "ms", 1e-3},
     {TimeUnit::Microsecond, "us", 1e-6},
+    {TimeUnit::Nanosecond, "ns", 1e-9},
 }};
 constexpr std::array<Entry<AccelUnit>, 3> kAccel{{
     {AccelUnit::MeterPerSecond2, "m/s^2", 1.0},

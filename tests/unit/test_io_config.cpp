@@ -379,7 +379,7 @@ TEST(IoConfig, CalibrateConfigErrorsNameLineAndKey) {
   expectCalibrateError(twelve_lines + "imu:\n  accel_unit: furlong\n",
                        ":12: imu.accel_unit: unknown unit 'furlong' (expected m/s^2, g, mg)");
   expectCalibrateError("imu:\n  gyro_unit: rpm\n", ":2: imu.gyro_unit: unknown unit 'rpm' (expected rad/s, deg/s)");
-  expectCalibrateError("imu:\n  time_unit: min\n", ":2: imu.time_unit: unknown unit 'min' (expected s, ms, us)");
+  expectCalibrateError("imu:\n  time_unit: min\n", ":2: imu.time_unit: unknown unit 'min' (expected s, ms, us, ns)");
   expectCalibrateError("heading:\n  unit: grad\n", ":2: heading.unit: unknown unit 'grad' (expected rad, deg)");
   expectCalibrateError("magnetometer:\n  unit: mT\n", ":2: magnetometer.unit: unknown unit 'mT' (expected uT, gauss, nT)");
   expectCalibrateError("magnetometer:\n  declination_deg: 200\n",

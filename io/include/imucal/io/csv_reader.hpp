@@ -1,5 +1,6 @@
 #pragma once
 // Reading recorded sensor files into SI, FRD samples. Every rejected file is named with the line at fault.
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -12,8 +13,10 @@ namespace imucal::io {
 
 // Time must strictly increase; output is specific force (m/s^2) and rate (rad/s) in FRD.
 // clock (optional): what the logged stamps say about the sample clock (see core/sample_clock.hpp).
+// time_origin_ns (optional): with times in ns, they are read exactly (see readCsvColumns' integer_time)
+// and t counts from the first sample, whose stamp is stored here; 0 otherwise (t as the file has it).
 std::vector<ImuSample> readImuCsv(const std::string& path, const ImuCsvFormat& format = {},
-                                  SampleClockEstimate* clock = nullptr);
+                                  SampleClockEstimate* clock = nullptr, std::int64_t* time_origin_ns = nullptr);
 // Whether readImuCsv put the samples on the uniform grid, given what their stamps said.
 bool retimesUniformly(const ImuCsvFormat& format, const SampleClockEstimate& clock);
 

@@ -2,6 +2,7 @@
 // Generic column-mapped CSV reading: a header row of names, then numeric rows. Columns are found by name,
 // so a file's column order and extra columns do not matter; every problem is reported with file and line.
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,9 @@ struct CsvColumns {
   std::vector<std::string> names;       // the requested columns, in request order
   std::vector<double> values;           // row-major, names.size() per row, in request order
   std::vector<long> lines;              // 1-based source line of each row
+  // With an integer first column (readCsvColumns' integer_time): its first row's value; that column's
+  // values are then exact differences from it.
+  std::int64_t integer_origin = 0;
 
   std::size_t rows() const { return lines.size(); }
   double at(std::size_t row, std::size_t col) const { return values[row * names.size() + col]; }
@@ -27,7 +31,10 @@ constexpr std::size_t kMaxCsvRows = 20'000'000;
 // byte-order mark and CR line ends are tolerated. Throws InputError for an unreadable file, a missing or
 // doubled requested column, a row with too few or too many fields, an empty, non-numeric, NaN or infinite
 // value in a requested column, or a file without data rows. Unrequested columns are not parsed.
-CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names);
+// integer_time: the first requested column holds whole numbers (nanosecond stamps since the epoch, above
+// 2^53, which a double rounds to 256 ns): parsed exactly, kept as differences from the first row's value
+// (integer_origin); a value that is not a whole number there is an error naming the line.
+CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names, bool integer_time = false);
 
 // Throws InputError unless column `col` strictly increases, also once multiplied by `to_seconds` (two
 // stamps a few ulp apart can become one); a step back or a repeated time stamp is named with its line.

@@ -6,7 +6,7 @@
 
 namespace imucal::io {
 
-enum class TimeUnit { Second, Millisecond, Microsecond };
+enum class TimeUnit { Second, Millisecond, Microsecond, Nanosecond };
 enum class AccelUnit { MeterPerSecond2, G, MilliG };
 enum class GyroUnit { RadPerSecond, DegPerSecond };
 enum class AngleUnit { Rad, Deg };
