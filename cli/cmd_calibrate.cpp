@@ -24,6 +24,7 @@
 #include "imucal/io/errors.hpp"
 #include "imucal/io/euroc_csv.hpp"
 #include "imucal/io/intrinsics_output.hpp"
+#include "imucal/io/noise_output.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/io/param_units.hpp"
 
@@ -40,6 +41,7 @@ struct CalibrateArgs {
   std::string intrinsics;
   std::string kalibr;
   std::string openvins;
+  std::string vins, orbslam3;
   std::string corrected_euroc;
   std::string plot;
 };
@@ -124,7 +126,7 @@ constexpr std::size_t kMaxHistoryEpochs = 20000;
 
 std::vector<std::string> exportPaths(const CalibrateArgs& args) {
   std::vector<std::string> out;
-  for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins, &args.corrected_euroc})
+  for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins, &args.vins, &args.orbslam3, &args.corrected_euroc})
     if (!p->empty()) out.push_back(*p);
   return out;
 }
@@ -159,6 +161,24 @@ std::string writeExports(const CalibrateArgs& args, const io::CalibrateConfig& c
   if (!args.openvins.empty()) {
     io::writeFileAtomically(args.openvins, io::openVinsImuYaml(result, exported, intrinsics, rate));
     std::cout << "wrote " << args.openvins << '\n';
+  }
+  if (!args.vins.empty() || !args.orbslam3.empty()) {
+    // The noise the filter used (measured from a still run or configured), for tools that take no intrinsics.
+    io::ToolNoise noise;
+    noise.accel_white = result.noise_used.accel_white;
+    noise.accel_walk = result.noise_used.accel_bias_walk;
+    noise.gyro_white = result.noise_used.gyro_white;
+    noise.gyro_walk = result.noise_used.gyro_bias_walk;
+    noise.rate_hz = rate;
+    noise.g_norm = effective.earth.gravity();
+    noise.notes = {"imucal calibrate: the noise its filter used (white density and bias random walk per triad, SI);",
+                   "g_norm: the config's local gravity"};
+    for (const auto& [path, text] : {std::pair{args.vins, io::vinsNoiseYaml(noise)},
+                                     std::pair{args.orbslam3, io::orbSlam3NoiseYaml(noise)}}) {
+      if (path.empty()) continue;
+      io::writeFileAtomically(path, text);
+      std::cout << "wrote " << path << '\n';
+    }
   }
   if (!args.corrected_euroc.empty()) {
     // The recording as the calibration corrects it, for tools that read no intrinsics (VINS-Fusion,
@@ -251,6 +271,9 @@ void addCalibrateCommand(CLI::App& app) {
   cmd->add_option("--kalibr", args->kalibr, "Also write the intrinsics as a Kalibr IMU YAML (scale-misalignment model)");
   cmd->add_option("--openvins", args->openvins,
                   "Also write the intrinsics as OpenVINS's kalibr_imu_chain.yaml (model kalibr: Tw, R_IMUtoGYRO, Ta, R_IMUtoACC, Tg)");
+  cmd->add_option("--vins", args->vins, "Also write the noise the filter used as VINS-Fusion's acc_n, gyr_n, acc_w, gyr_w, g_norm");
+  cmd->add_option("--orbslam3", args->orbslam3,
+                  "Also write the noise the filter used as ORB-SLAM3's IMU.Noise*, IMU.*Walk, IMU.Frequency");
   cmd->add_option("--corrected-euroc", args->corrected_euroc,
                   "Also write the recording corrected by the calibration as EuRoC IMU CSV (ns, rad/s, m/s^2)");
   cmd->add_option("--plot", args->plot,

@@ -23,5 +23,6 @@ void addEchoCommand(CLI::App& app);
 void addLog2CsvCommand(CLI::App& app);
 void addMagcalCommand(CLI::App& app);
 void addValidateCommand(CLI::App& app);
+void addNoiseCommand(CLI::App& app);
 
 }  // namespace imucal::cli

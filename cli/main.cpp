@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   imucal::cli::addLog2CsvCommand(app);
   imucal::cli::addMagcalCommand(app);
   imucal::cli::addValidateCommand(app);
+  imucal::cli::addNoiseCommand(app);
   try {
     if (const auto status = command_line.parse(argc, argv)) return *status;
   } catch (const imucal::io::InputError& e) {

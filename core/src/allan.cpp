@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include "imucal/core/profile_likelihood.hpp"
+
 namespace imucal {
 
 namespace {
@@ -51,6 +53,12 @@ double allanModel(const NoiseTerms& t, double tau) {
   return std::sqrt(avar);
 }
 
+AllanInterval allanInterval(const AllanPoint& p, double level) {
+  const int dof = std::max(1, static_cast<int>(std::lround(p.dof)));
+  const double avar = p.adev * p.adev, tail = (1.0 - level) / 2.0;
+  return {std::sqrt(avar * dof / chiSquareQuantile(tail, dof)), std::sqrt(avar * dof / chiSquareQuantile(1.0 - tail, dof))};
+}
+
 double equivalentRandomWalk(double random_walk, double bias_instability, double span) {
   if (!(span > 0.0)) return random_walk;
   return std::sqrt(random_walk * random_walk + 3.0 * kFlicker * bias_instability * bias_instability / span);
@@ -65,7 +73,7 @@ double noiseMisfit(const std::vector<AllanPoint>& points, const NoiseTerms& mode
   return misfit;
 }
 
-NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points) {
+NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points, const NoiseTermMask& allowed) {
   NoiseFit fit;
   if (points.empty()) return fit;
   // Relative errors: each AVAR point is known to sqrt(2 / dof) of itself, so the rows are divided by the
@@ -82,7 +90,7 @@ NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points) {
     for (Eigen::Index j = 0; j < 4; ++j) design(i, j) = w * b[static_cast<std::size_t>(j)];
     y(i) = w * avar;
   }
-  std::array<bool, 4> active{true, true, true, true};
+  std::array<bool, 4> active = allowed;
   Eigen::Vector4d c = Eigen::Vector4d::Zero();
   Eigen::Matrix4d cov = Eigen::Matrix4d::Zero();
   for (int iter = 0; iter < 4; ++iter) {

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
+#include "imucal/core/allan_bootstrap.hpp"
 #include "imucal/core/profile_likelihood.hpp"
 #include "imucal/core/static_detector.hpp"
 
@@ -13,6 +15,8 @@ namespace imucal {
 namespace {
 
 constexpr double kMaterial = 0.1;
+// Draws per channel for the terms' sigmas: enough for a sigma to about 10 %.
+constexpr int kNoiseDraws = 50;
 
 struct Term {
   const char* suffix;
@@ -71,7 +75,9 @@ void diagnoseNoise(const std::vector<ImuSample>& imu, const std::vector<bool>& s
       AllanCurve c;
       c.channel = sensor + "_" + "xyz"[i];
       c.data = allanDeviation(run.channels[static_cast<std::size_t>((gyro ? 3 : 0) + i)], run.dt);
-      c.fit = fitNoiseTerms(c.data);
+      // Sigmas from records drawn from the fit, and only the quantization or flicker the record shows
+      // (allan_bootstrap.hpp): the fit's own sigmas name effects on noise alone.
+      c.fit = estimateNoise(c.data, run.samples(), run.dt, kNoiseDraws, 1 + static_cast<std::uint64_t>((gyro ? 3 : 0) + i)).fit;
       c.model_before = before;
       curves.push_back(c);
     }

@@ -2,6 +2,7 @@
 // Overlapping Allan deviation of a uniformly sampled rate (gyro, rad/s) or specific force (m/s^2), and the
 // standard noise model fitted to it: the same terms the simulator generates (sim/sensor_sim.hpp) and the
 // filter's process noise uses (white density, bias random walk), plus quantization and bias instability.
+#include <array>
 #include <vector>
 
 namespace imucal {
@@ -25,6 +26,13 @@ struct NoiseTerms {
 
 double allanModel(const NoiseTerms& n, double tau);  // ADEV of the model at tau
 
+// The central interval of probability `level` (0.68: one sigma) of the true ADEV behind a measured point,
+// from the chi-square distribution of its equivalent degrees of freedom: {low, high}.
+struct AllanInterval {
+  double low = 0.0, high = 0.0;
+};
+AllanInterval allanInterval(const AllanPoint& p, double level);
+
 struct NoiseFit {
   NoiseTerms value;
   NoiseTerms sigma;  // 1-sigma of each coefficient (0 where clamped at zero)
@@ -37,8 +45,13 @@ struct NoiseFit {
   double misfit = 0.0;
 };
 
-// Weighted least squares on the Allan variance (each point weighted by its dof), coefficients held >= 0.
-NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points);
+// Which terms a fit may use, in NoiseTerms' order: quantization, white, bias instability, random walk.
+using NoiseTermMask = std::array<bool, 4>;
+constexpr NoiseTermMask kAllNoiseTerms{true, true, true, true};
+
+// Weighted least squares on the Allan variance (each point weighted by its dof), coefficients held >= 0;
+// the terms `allowed` leaves out are held at zero.
+NoiseFit fitNoiseTerms(const std::vector<AllanPoint>& points, const NoiseTermMask& allowed = kAllNoiseTerms);
 
 // The random walk whose Allan variance at tau = span equals that of a walk plus a flicker floor:
 // K_eq^2 = K^2 + 3 (2 ln 2 / pi) B^2 / span. A filter that models biases as random walks, run over span,
