@@ -25,6 +25,7 @@
 #include "imucal/io/euroc_csv.hpp"
 #include "imucal/io/intrinsics_output.hpp"
 #include "imucal/io/noise_output.hpp"
+#include "imucal/io/ros1_bag_writer.hpp"
 #include "imucal/io/json_output.hpp"
 #include "imucal/io/param_units.hpp"
 
@@ -43,6 +44,7 @@ struct CalibrateArgs {
   std::string openvins;
   std::string vins, orbslam3;
   std::string corrected_euroc;
+  std::string corrected_bag;
   std::string plot;
 };
 
@@ -126,7 +128,8 @@ constexpr std::size_t kMaxHistoryEpochs = 20000;
 
 std::vector<std::string> exportPaths(const CalibrateArgs& args) {
   std::vector<std::string> out;
-  for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins, &args.vins, &args.orbslam3, &args.corrected_euroc})
+  for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins, &args.vins, &args.orbslam3, &args.corrected_euroc,
+                                 &args.corrected_bag})
     if (!p->empty()) out.push_back(*p);
   return out;
 }
@@ -180,7 +183,7 @@ std::string writeExports(const CalibrateArgs& args, const io::CalibrateConfig& c
       std::cout << "wrote " << path << '\n';
     }
   }
-  if (!args.corrected_euroc.empty()) {
+  if (!args.corrected_euroc.empty() || !args.corrected_bag.empty()) {
     // The recording as the calibration corrects it, for tools that read no intrinsics (VINS-Fusion,
     // ORB-SLAM3, robot_localization): the same correction as the filter's, with what did not converge
     // at its prior mean, as in the intrinsics.
@@ -190,8 +193,19 @@ std::string writeExports(const CalibrateArgs& args, const io::CalibrateConfig& c
       s.accel = model.correctAccel(s.accel);
       s.gyro = model.correctGyro(s.gyro, s.accel);
     }
-    io::writeEurocImuCsv(args.corrected_euroc, corrected, recording.time_origin_ns);
-    std::cout << "wrote " << args.corrected_euroc << " (" << corrected.size() << " corrected samples)\n";
+    if (!args.corrected_euroc.empty()) {
+      io::writeEurocImuCsv(args.corrected_euroc, corrected, recording.time_origin_ns);
+      std::cout << "wrote " << args.corrected_euroc << " (" << corrected.size() << " corrected samples)\n";
+    }
+    if (!args.corrected_bag.empty()) {
+      io::Ros1ImuBagOptions bag;
+      // One sample's variance from the white noise the filter used: density^2 times the sample rate.
+      bag.gyro_variance = result.noise_used.gyro_white * result.noise_used.gyro_white * rate;
+      bag.accel_variance = result.noise_used.accel_white * result.noise_used.accel_white * rate;
+      io::writeRos1ImuBag(args.corrected_bag, corrected, recording.time_origin_ns, bag);
+      std::cout << "wrote " << args.corrected_bag << " (" << corrected.size() << " corrected samples on " << bag.topic
+                << ", FLU)\n";
+    }
   }
   if (!exported.at_prior.empty())
     std::cout << "intrinsics: " << exported.at_prior.size()
@@ -276,6 +290,8 @@ void addCalibrateCommand(CLI::App& app) {
                   "Also write the noise the filter used as ORB-SLAM3's IMU.Noise*, IMU.*Walk, IMU.Frequency");
   cmd->add_option("--corrected-euroc", args->corrected_euroc,
                   "Also write the recording corrected by the calibration as EuRoC IMU CSV (ns, rad/s, m/s^2)");
+  cmd->add_option("--corrected-bag", args->corrected_bag,
+                  "Also write the recording corrected by the calibration as a ROS 1 bag (sensor_msgs/Imu on /imu/data, FLU)");
   cmd->add_option("--plot", args->plot,
                   "Also write an SVG of every estimated parameter's estimate +- 1-sigma over time, moves shaded");
   cmd->add_option("--truth", args->truth, "truth.json from `imucal simulate`: print the error of each estimate (and draw the truth in --plot)")->check(CLI::ExistingFile);

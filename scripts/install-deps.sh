@@ -25,6 +25,8 @@ packages=(
   libgpiod-dev can-utils
   # tests/openvins reads the OpenVINS intrinsics file with OpenCV's cv::FileStorage, as OpenVINS does.
   libopencv-core-dev
+  # ROS's own Python library reads the bags `calibrate --corrected-bag` writes (test_cli_foreign_formats).
+  python3-rosbag python3-sensor-msgs
   # scripts/fuzz.sh: clang with the libFuzzer, ASan and UBSan runtimes.
   clang libclang-rt-14-dev
 )

@@ -8,6 +8,7 @@
 
 #include "imucal/io/decompress.hpp"
 #include "imucal/io/errors.hpp"
+#include "ros1_types.hpp"
 #include "ros_topics.hpp"
 
 namespace imucal::io {
@@ -23,13 +24,9 @@ constexpr std::uint32_t kMaxChunkBytes = 256u << 20;
 
 enum Op : std::uint8_t { kMessage = 0x02, kBagHeader = 0x03, kIndex = 0x04, kChunk = 0x05, kChunkInfo = 0x06, kConnection = 0x07 };
 
-// The definitions this reader decodes, by the md5sum ROS computes from their text (genmsg).
-struct KnownType {
-  const char* name;
-  const char* md5;
-};
-constexpr KnownType kImuType{"sensor_msgs/Imu", "6a62c6daae103f4ff57a132d6f95cec2"};
-constexpr KnownType kMagType{"sensor_msgs/MagneticField", "2f3b0b43eed0c9501de0fa3ff89a45aa"};
+using ros1::KnownType;
+using ros1::kImuType;
+using ros1::kMagType;
 
 using Fields = std::map<std::string, std::string>;
 
