@@ -117,7 +117,7 @@ std::vector<MagSample> loadPhone(const RecordingArgs& args, const io::CalibrateC
   io::PhoneRecording phone = format == "Sensor Logger" ? io::readSensorLogger(args.imu) : io::readPhyphox(args.imu);
   r.imu_format = format;
   std::cout << args.imu << ": " << format << ", " << phone.imu.size() << " IMU samples (gyro " << phone.gyro_file
-            << ", accelerometer " << phone.accel_file << (phone.gyro_file == phone.accel_file ? "" : " interpolated onto its stamps") << ")";
+            << ", accelerometer " << phone.accel_file << (phone.gyro_file == phone.accel_file ? "" : " on the gyro's stamps") << ")";
   if (!phone.mag_file.empty()) std::cout << ", " << phone.mag.size() << " magnetometer samples from " << phone.mag_file;
   std::cout << " (phone axes to FRD" << (phone.conversion.empty() ? "" : "; " + phone.conversion) << ")\n";
   if (phone.dropped > 0)
