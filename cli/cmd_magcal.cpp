@@ -1,5 +1,5 @@
-// `imucal magcal`: hard and soft iron of a magnetometer from a recorded rotation (CSV files or the
-// mag_field_t messages of an LCM log), written as the LIS3MDL driver's `heading:` keys.
+// `imucal magcal`: hard and soft iron of a magnetometer from a recorded rotation (CSV files, the
+// mag_field_t messages of an LCM log, or a bag's or phone app's recording), written as the LIS3MDL driver's `heading:` keys.
 #include <cstdio>
 #include <iostream>
 #include <map>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "recording_input.hpp"
 #include "imucal/core/iron_fit.hpp"
 #include "imucal/io/atomic_file.hpp"
 #include "imucal/io/config.hpp"
@@ -27,6 +28,8 @@ namespace {
 struct MagcalArgs {
   std::vector<std::string> csv;
   std::string lcm_log;
+  std::string recording;  // a bag, MCAP, rosbag2, Sensor Logger or phyphox recording
+  std::string mag_topic;
   std::string channel = "IMUCAL_MAG_FIELD";
   std::string sensor_id;
   std::string config;
@@ -37,12 +40,12 @@ struct MagcalArgs {
   std::string json;
 };
 
-struct Recording {
+struct MagRecording {
   std::vector<Vec3> field;  // uT, the frame the driver corrects in
   std::string source;
 };
 
-Recording readCsvFiles(const MagcalArgs& args) {
+MagRecording readCsvFiles(const MagcalArgs& args) {
   io::MagCsvFormat format;
   if (!args.config.empty()) format = io::loadCalibrateConfig(args.config).mag;
   if (!args.unit.empty()) {
@@ -50,7 +53,7 @@ Recording readCsvFiles(const MagcalArgs& args) {
     if (!unit) throw io::InputError("--unit: '" + io::excerpt(args.unit) + "' is not one of " + io::magUnitChoices());
     format.unit = *unit;
   }
-  Recording r;
+  MagRecording r;
   for (const std::string& path : args.csv) {
     for (const MagSample& s : io::readMagCsv(path, format)) r.field.push_back(s.field);
     r.source += (r.source.empty() ? "" : " + ") + path;
@@ -58,9 +61,9 @@ Recording readCsvFiles(const MagcalArgs& args) {
   return r;
 }
 
-Recording readLog(const MagcalArgs& args) {
+MagRecording readLog(const MagcalArgs& args) {
   io::LcmLogReader log(args.lcm_log);
-  Recording r;
+  MagRecording r;
   r.source = args.lcm_log + " (" + args.channel + ")";
   std::map<std::string, long> sensors;
   long event = 0, saturated = 0;
@@ -161,9 +164,18 @@ nlohmann::json toJson(const IronFit& f, const std::string& source, const IronFit
   return j;
 }
 
+// The same readers as `calibrate --imu` (recording_input), magnetometer only.
+MagRecording readRecording(const MagcalArgs& args) {
+  MagRecording r;
+  for (const MagSample& s : readRecordingField(args.recording, args.mag_topic, r.source)) r.field.push_back(s.field);
+  return r;
+}
+
 void runMagcal(const MagcalArgs& args) {
-  if (args.csv.empty() == args.lcm_log.empty()) throw io::InputError("give either --csv FILE... or --lcm-log FILE");
-  const Recording rec = args.csv.empty() ? readLog(args) : readCsvFiles(args);
+  if (!args.csv.empty() + !args.lcm_log.empty() + !args.recording.empty() != 1)
+    throw io::InputError("give one of --csv FILE..., --lcm-log FILE or --recording PATH");
+  if (!args.mag_topic.empty() && args.recording.empty()) throw io::InputError("--mag-topic goes with --recording");
+  const MagRecording rec = !args.recording.empty() ? readRecording(args) : args.csv.empty() ? readLog(args) : readCsvFiles(args);
   IronFitOptions options;
   options.field_ut = args.field_ut;
   options.scalar_only = args.scalar_only;
@@ -207,6 +219,11 @@ void addMagcalCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("magcal", "Fit a magnetometer's hard and soft iron from a recorded rotation");
   cmd->add_option("--csv", args->csv, "Magnetometer CSV files (t,mx,my,mz), fitted together")->check(CLI::ExistingFile);
   cmd->add_option("--lcm-log", args->lcm_log, "LCM log with mag_field_t messages")->check(CLI::ExistingFile);
+  cmd->add_option("--recording", args->recording,
+                  "A recording's magnetometer: ROS 1 bag, MCAP, rosbag2 .db3 or folder (sensor_msgs/MagneticField), "
+                  "Sensor Logger folder or zip, phyphox CSV, folder or zip")
+      ->check(CLI::ExistingPath);
+  cmd->add_option("--mag-topic", args->mag_topic, "The recording's magnetometer topic, when it holds several");
   cmd->add_option("--channel", args->channel, "mag_field_t channel in the log")->capture_default_str();
   cmd->add_option("--sensor-id", args->sensor_id, "Only this sensor's messages (needed when the channel has several)");
   cmd->add_option("--config", args->config, "Calibrate config whose `magnetometer:` section gives the CSV columns, unit, axes");

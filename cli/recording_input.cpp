@@ -1,6 +1,7 @@
 #include "recording_input.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <stdexcept>
 
@@ -8,10 +9,14 @@
 #include "imucal/core/magnetometer_heading.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/csv_reader.hpp"
+#include "imucal/io/errors.hpp"
 #include "imucal/io/euroc_csv.hpp"
 #include "imucal/io/mcap.hpp"
+#include "imucal/io/phone_recording.hpp"
+#include "imucal/io/phyphox.hpp"
 #include "imucal/io/rosbag2.hpp"
 #include "imucal/io/ros1_bag.hpp"
+#include "imucal/io/sensor_logger.hpp"
 #include "imucal/io/timing_checks.hpp"
 
 namespace imucal::cli {
@@ -19,7 +24,8 @@ namespace imucal::cli {
 void addRecordingOptions(CLI::App& cmd, RecordingArgs& args) {
   cmd.add_option("--imu", args.imu,
                  "IMU CSV, EuRoC CSV, ROS 1 bag, MCAP, rosbag2 .db3 or rosbag2 folder (sensor_msgs/Imu; a "
-                 "MagneticField topic gives heading)")
+                 "MagneticField topic gives heading), or a phone app's recording: a Sensor Logger folder or zip, a "
+                 "phyphox CSV, folder or zip (its magnetometer gives heading)")
       ->check(CLI::ExistingPath);
   cmd.add_option("--imu-topic", args.imu_topic, "The bag's IMU topic, when it holds several");
   cmd.add_option("--mag-topic", args.mag_topic, "The bag's magnetometer topic, when it holds several");
@@ -77,15 +83,6 @@ void shiftToOrigin(std::vector<Sample>& samples, std::int64_t origin_ns) {
   for (Sample& s : samples) s.t -= origin;
 }
 
-// The ROS storage the path holds, recognized by content ("" for none: a CSV).
-std::string rosFormatOf(const std::string& path) {
-  if (path.empty()) return "";
-  if (io::isRosbag2Folder(path)) return "rosbag2 folder";
-  if (io::looksLikeRos1Bag(path)) return "ROS 1 bag";
-  if (io::looksLikeMcap(path)) return "MCAP";
-  if (io::looksLikeSqlite(path)) return "rosbag2 sqlite3";
-  return "";
-}
 
 // A ROS recording's IMU (and magnetometer, if it has one and no other heading was given).
 std::vector<MagSample> loadRos(const RecordingArgs& args, const io::CalibrateConfig& config, const std::string& format,
@@ -114,7 +111,60 @@ std::vector<MagSample> loadRos(const RecordingArgs& args, const io::CalibrateCon
   return std::move(bag.mag);
 }
 
+// A phone app's recording's IMU (and magnetometer, as for a bag).
+std::vector<MagSample> loadPhone(const RecordingArgs& args, const io::CalibrateConfig& config, const std::string& format,
+                                 Recording& r) {
+  io::PhoneRecording phone = format == "Sensor Logger" ? io::readSensorLogger(args.imu) : io::readPhyphox(args.imu);
+  r.imu_format = format;
+  std::cout << args.imu << ": " << format << ", " << phone.imu.size() << " IMU samples (gyro " << phone.gyro_file
+            << ", accelerometer " << phone.accel_file << (phone.gyro_file == phone.accel_file ? "" : " on the gyro's stamps") << ")";
+  if (!phone.mag_file.empty()) std::cout << ", " << phone.mag.size() << " magnetometer samples from " << phone.mag_file;
+  std::cout << " (phone axes to FRD" << (phone.conversion.empty() ? "" : "; " + phone.conversion) << ")\n";
+  if (phone.dropped > 0)
+    std::cerr << "imucal: warning: " << args.imu << ": " << phone.dropped
+              << " gyro samples outside the accelerometer's time span left out\n";
+  io::checkImuTiming(phone.imu, config.imu.max_gap, "s", [&](std::size_t i) {
+    return phone.gyro_file + ":" + std::to_string(phone.imu_lines[i]) + ": ";
+  });
+  r.imu = std::move(phone.imu);
+  r.time_origin_ns = phone.first_stamp_ns;
+  return std::move(phone.mag);
+}
+
 }  // namespace
+
+std::string rosFormatOf(const std::string& path) {
+  if (path.empty()) return "";
+  if (io::isRosbag2Folder(path)) return "rosbag2 folder";
+  // Any other folder is no ROS file (reading a folder's bytes throws): a phone app's export, perhaps.
+  if (std::filesystem::is_directory(path)) return "";
+  if (io::looksLikeRos1Bag(path)) return "ROS 1 bag";
+  if (io::looksLikeMcap(path)) return "MCAP";
+  if (io::looksLikeSqlite(path)) return "rosbag2 sqlite3";
+  return "";
+}
+
+std::vector<MagSample> readRecordingField(const std::string& path, const std::string& mag_topic, std::string& source) {
+  if (const std::string ros = rosFormatOf(path); !ros.empty()) {
+    io::TopicChoice choice;
+    choice.mag_topic = mag_topic;
+    choice.imu_required = false;
+    io::RosRecording bag = ros == "rosbag2 folder"    ? io::readRosbag2Folder(path, choice)
+                           : ros == "rosbag2 sqlite3" ? io::readRosbag2Db3(path, choice)
+                           : ros == "MCAP"            ? io::readMcap(path, choice)
+                                                      : io::readRos1Bag(path, choice);
+    source = path + " (" + ros + ", " + bag.mag_topic + ")";
+    return std::move(bag.mag);
+  }
+  const std::string phone = io::phoneFormatOf(path);
+  if (phone.empty())
+    throw io::InputError(io::location(path, 0) + "not a ROS 1 bag, MCAP, rosbag2, Sensor Logger or phyphox recording "
+                                                 "(a magnetometer CSV goes with --csv)");
+  std::string file;
+  std::vector<MagSample> field = phone == "Sensor Logger" ? io::readSensorLoggerField(path, &file) : io::readPhyphoxField(path, &file);
+  source = file + " (" + phone + ")";
+  return field;
+}
 
 Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) {
   if (args.imu.empty() == args.lcm_log.empty()) throw std::invalid_argument("give either --imu or --lcm-log");
@@ -136,6 +186,8 @@ Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config) 
   std::vector<MagSample> bag_mag;
   if (const std::string ros = rosFormatOf(args.imu); !ros.empty()) {
     bag_mag = loadRos(args, config, ros, r);
+  } else if (const std::string phone = io::phoneFormatOf(args.imu); !phone.empty()) {
+    bag_mag = loadPhone(args, config, phone, r);
   } else if (!args.imu.empty()) {
     if (io::looksLikeEurocImu(args.imu)) {
       config.imu = io::eurocImuFormat(config.imu);

@@ -1,6 +1,6 @@
 #pragma once
 // The recording a command works on: IMU from CSV (ours or EuRoC's), a ROS 1 bag, an MCAP file, a rosbag2
-// .db3 or folder (each recognized by content) or an LCM log; heading from a CSV, a magnetometer (a CSV or
+// .db3 or folder, a phone app's recording (Sensor Logger, phyphox) (each recognized by content) or an LCM log; heading from a CSV, a magnetometer (a CSV or
 // the bag's) or the log. Shared by `calibrate` and `diagnose` so both read input the same way.
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -34,7 +34,7 @@ struct Recording {
   bool uniform_time_base = false;
   // What the samples' t = 0 is, in ns since the epoch (a bag's first stamp; 0 where t is that already).
   std::int64_t time_origin_ns = 0;
-  std::string imu_format = "CSV";  // "CSV", "EuRoC CSV", "ROS 1 bag", "MCAP", "rosbag2 ...", "LCM log"
+  std::string imu_format = "CSV";  // "CSV", "EuRoC CSV", "ROS 1 bag", "MCAP", "rosbag2 ...", "Sensor Logger", "phyphox", "LCM log"
 };
 
 // Reads the recording; a magnetometer sets config.filter's heading sigma from its fit, and heading is
@@ -42,6 +42,14 @@ struct Recording {
 // scale factor common to the gyro axes: it widens the gyro scale prior, or is considered when the model
 // leaves gyro scale out. Prints what it read.
 Recording loadRecording(const RecordingArgs& args, io::CalibrateConfig& config);
+
+// The ROS storage the path holds, recognized by content ("" for none).
+std::string rosFormatOf(const std::string& path);
+
+// A recording's magnetometer alone (`imucal magcal --recording`), FRD, uT: a ROS 1 bag, MCAP or rosbag2
+// (`mag_topic`, or its only MagneticField topic; no IMU topic needed), a Sensor Logger or phyphox
+// recording. `source` is set to what was read. Throws InputError for a path that is none of them.
+std::vector<MagSample> readRecordingField(const std::string& path, const std::string& mag_topic, std::string& source);
 
 // "imu.csv + heading.csv" or "log.lcm": for reports.
 std::string describeRecording(const RecordingArgs& args);

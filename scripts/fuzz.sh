@@ -14,13 +14,15 @@ jobs="${JOBS:-2}"
 cxx="${CXX:-$(command -v clang++ || command -v clang++-14)}"
 
 all_targets=(fuzz_imu_csv fuzz_heading_csv fuzz_mag_csv fuzz_calibrate_config fuzz_daemon_config fuzz_sim_config
-             fuzz_driver_config fuzz_calibration_store fuzz_candump fuzz_j1939 fuzz_lcm_log fuzz_lcm_node fuzz_ros1_bag fuzz_mcap fuzz_rosbag2_db3)
+             fuzz_driver_config fuzz_calibration_store fuzz_candump fuzz_j1939 fuzz_lcm_log fuzz_lcm_node fuzz_ros1_bag fuzz_mcap fuzz_rosbag2_db3
+             fuzz_sensor_logger_zip fuzz_phyphox_csv)
 targets=("$@")
 ((${#targets[@]} > 0)) || targets=("${all_targets[@]}")
 
 declare -A dict=([fuzz_imu_csv]=csv [fuzz_heading_csv]=csv [fuzz_mag_csv]=csv [fuzz_calibrate_config]=calibrate_config
                  [fuzz_daemon_config]=daemon_config [fuzz_sim_config]=sim_config [fuzz_driver_config]=driver_config
-                 [fuzz_candump]=candump [fuzz_calibration_store]=calibration_store [fuzz_ros1_bag]=ros1_bag [fuzz_mcap]=mcap)
+                 [fuzz_candump]=candump [fuzz_calibration_store]=calibration_store [fuzz_ros1_bag]=ros1_bag [fuzz_mcap]=mcap
+                 [fuzz_sensor_logger_zip]=zip [fuzz_phyphox_csv]=phyphox)
 
 # -O1 without NDEBUG: asserts (Eigen's index checks among them) count as findings.
 # The compiler only on the first configure: naming it again differently (clang++ vs clang++-14) would

@@ -22,11 +22,11 @@ std::string_view unquote(std::string_view s) {
   return s;
 }
 
-std::vector<std::string_view> splitFields(std::string_view line) {
+std::vector<std::string_view> splitFields(std::string_view line, char separator = ',') {
   std::vector<std::string_view> fields;
   std::size_t start = 0;
   while (true) {
-    const auto comma = line.find(',', start);
+    const auto comma = line.find(separator, start);
     if (comma == std::string_view::npos) {
       fields.push_back(unquote(line.substr(start)));
       return fields;
@@ -87,7 +87,14 @@ LineRead readLine(std::istream& in, std::string& line) {
   }
 }
 
-double parseField(const std::string& path, long line, const std::string& column, std::string_view text) {
+double parseField(const std::string& path, long line, const std::string& column, std::string_view text, char decimal) {
+  // A decimal comma (phyphox's "decimal comma" exports) is read as the point it stands for.
+  std::string swapped;
+  if (decimal != '.' && text.find(decimal) != std::string_view::npos) {
+    swapped.assign(text);
+    std::replace(swapped.begin(), swapped.end(), decimal, '.');
+    text = swapped;
+  }
   const ParsedNumber n = parseNumber(text);
   const std::string where = "column '" + column + "': ";
   switch (n.status) {
@@ -124,7 +131,11 @@ bool parseWholeNumber(std::string_view text, std::int64_t& out) {
 CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names, bool integer_time) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throwInputError(path, 0, std::string("cannot open for reading: ") + std::strerror(errno));
+  return readCsvColumns(in, path, names, integer_time);
+}
 
+CsvColumns readCsvColumns(std::istream& in, const std::string& path, const std::vector<std::string>& names,
+                          bool integer_time, const CsvDialect& dialect) {
   CsvColumns csv;
   csv.path = path;
   csv.names = names;
@@ -146,7 +157,7 @@ CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string
     // comment before the header whose fields name every requested column is the header.
     if (isSkipped(line) && !(csv.header.empty() && isCommentedHeader(line, names))) continue;
     if (!line.empty() && line.front() == '#') line.remove_prefix(1);
-    const auto fields = splitFields(line);
+    const auto fields = splitFields(line, dialect.separator);
 
     if (csv.header.empty()) {
       csv.header_line = line_no;
@@ -192,7 +203,7 @@ CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string
         csv.values.push_back(static_cast<double>(v - csv.integer_origin));
         continue;
       }
-      csv.values.push_back(parseField(path, line_no, names[i], fields[field_of[i]]));
+      csv.values.push_back(parseField(path, line_no, names[i], fields[field_of[i]], dialect.decimal));
     }
     csv.lines.push_back(line_no);
   }

@@ -5,6 +5,8 @@
 #include <zlib.h>
 #include <zstd.h>
 
+#include <algorithm>
+
 #include "imucal/io/errors.hpp"
 
 namespace imucal::io {
@@ -56,6 +58,42 @@ std::vector<std::uint8_t> decompressZstd(const std::uint8_t* data, std::size_t n
   if (ZSTD_isError(got)) throw InputError(what + ": zstd data that do not decompress (" + ZSTD_getErrorName(got) + ")");
   if (got != size)
     throw InputError(what + ": zstd data of " + std::to_string(got) + " bytes where the chunk says " + std::to_string(size));
+  return out;
+}
+
+std::vector<std::uint8_t> decompressDeflateRaw(const std::uint8_t* data, std::size_t n, std::size_t size,
+                                               const std::string& what) {
+  z_stream z{};
+  if (inflateInit2(&z, -15) != Z_OK) throw InputError(what + ": zlib context");
+  // One spare byte tells an output longer than announced. The buffer grows as the output does: a forged
+  // size (up to 1032 times the input) then costs memory only for data that really inflate to it.
+  const std::size_t limit = size + 1;
+  std::vector<std::uint8_t> out(std::min<std::size_t>(limit, std::size_t{1} << 20));
+  std::size_t in_pos = 0, out_pos = 0;
+  int rc = Z_OK;
+  // uInt is 32 bits: feed and drain in steps below 4 GiB.
+  constexpr std::size_t kStep = 1u << 30;
+  while (rc == Z_OK) {
+    if (out_pos == out.size() && out.size() < limit) out.resize(std::min(limit, out.size() * 2));
+    z.next_in = const_cast<Bytef*>(data + in_pos);
+    z.avail_in = static_cast<uInt>(std::min(kStep, n - in_pos));
+    z.next_out = out.data() + out_pos;
+    z.avail_out = static_cast<uInt>(std::min(kStep, out.size() - out_pos));
+    const uInt in_before = z.avail_in, out_before = z.avail_out;
+    rc = inflate(&z, Z_NO_FLUSH);
+    in_pos += in_before - z.avail_in;
+    out_pos += out_before - z.avail_out;
+    if (rc == Z_OK && in_before == z.avail_in && out_before == z.avail_out) rc = Z_BUF_ERROR;  // no progress
+  }
+  inflateEnd(&z);
+  if (rc != Z_STREAM_END) {
+    if (out_pos > size) throw InputError(what + ": deflate data longer than the " + std::to_string(size) + " bytes announced");
+    throw InputError(what + ": deflate data that do not decompress (" +
+                     (rc == Z_BUF_ERROR ? std::string("cut short") : "zlib error " + std::to_string(rc)) + ")");
+  }
+  if (out_pos != size)
+    throw InputError(what + ": deflate data of " + std::to_string(out_pos) + " bytes where " + std::to_string(size) + " are announced");
+  out.resize(size);
   return out;
 }
 

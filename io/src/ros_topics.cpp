@@ -50,8 +50,9 @@ RosRecording TopicCollector::result(const TopicChoice& choice) const {
     t.messages = it == samples_.end() ? 0 : static_cast<long>(it->second.size());
     out.topics.push_back(t);
   }
-  out.imu_topic = choose(imu_type_, choice.imu_topic, choice.imu_option, true);
-  out.mag_topic = choose(mag_type_, choice.mag_topic, choice.mag_option, false);
+  out.imu_topic = choice.imu_required ? choose(imu_type_, choice.imu_topic, choice.imu_option, true) : "";
+  out.mag_topic = choose(mag_type_, choice.mag_topic, choice.mag_option, !choice.imu_required);
+  if (out.imu_topic.empty()) return magnetometerOnly(std::move(out));
   const auto found = samples_.find(out.imu_topic);
   if (found == samples_.end() || found->second.empty())
     throw InputError(location(path_, 0) + "topic " + out.imu_topic + " holds no message");
@@ -79,6 +80,21 @@ RosRecording TopicCollector::result(const TopicChoice& choice) const {
       out.mag.push_back(m);
       out.mag_messages.push_back(s.message);
     }
+  }
+  return out;
+}
+
+RosRecording TopicCollector::magnetometerOnly(RosRecording out) const {
+  const auto mag = samples_.find(out.mag_topic);
+  if (mag == samples_.end() || mag->second.empty())
+    throw InputError(location(path_, 0) + "topic " + out.mag_topic + " holds no message");
+  out.first_stamp_ns = mag->second.front().ns;
+  for (const Stamped& s : mag->second) {
+    MagSample m;
+    m.t = static_cast<double>(s.ns - out.first_stamp_ns) * 1e-9;
+    m.field = s.a;
+    out.mag.push_back(m);
+    out.mag_messages.push_back(s.message);
   }
   return out;
 }

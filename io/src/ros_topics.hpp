@@ -48,6 +48,7 @@ class TopicCollector {
   RosRecording result(const TopicChoice& choice) const;
 
  private:
+  RosRecording magnetometerOnly(RosRecording out) const;  // out's topics chosen, no IMU topic
   std::string choose(const std::string& type, const std::string& asked, const std::string& option, bool required) const;
   std::string path_, imu_type_, mag_type_;
   std::map<std::string, std::string> topic_type_;

@@ -135,7 +135,7 @@ TEST(CliMagcal, BadInputIsExitStatusTwoNamingFileAndLine) {
   EXPECT_CONTAINS(few.output, few_csv + ": iron fit needs at least 12 field samples, got 11");
   const CommandRun none = runImucal("magcal");
   EXPECT_EQ(none.status, 2) << none.output;
-  EXPECT_CONTAINS(none.output, "give either --csv FILE... or --lcm-log FILE");
+  EXPECT_CONTAINS(none.output, "give one of --csv FILE..., --lcm-log FILE or --recording PATH");
 }
 
 TEST(CliMagcal, ATurnAboutOneAxisIsRefusedNamingTheAxis) {

@@ -3,6 +3,7 @@
 // so a file's column order and extra columns do not matter; every problem is reported with file and line.
 #include <cstddef>
 #include <cstdint>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,17 @@ constexpr std::size_t kMaxCsvRows = 20'000'000;
 // 2^53, which a double rounds to 256 ns): parsed exactly, kept as differences from the first row's value
 // (integer_origin); a value that is not a whole number there is an error naming the line.
 CsvColumns readCsvColumns(const std::string& path, const std::vector<std::string>& names, bool integer_time = false);
+
+// How the fields of a line are separated and what a number's decimal separator is (phyphox exports
+// comma, tab or semicolon, the last two also with a decimal comma).
+struct CsvDialect {
+  char separator = ',';
+  char decimal = '.';
+};
+
+// The same from a stream (an entry of a zip archive); `path` names it in messages ("rec.zip:Gyroscope.csv").
+CsvColumns readCsvColumns(std::istream& in, const std::string& path, const std::vector<std::string>& names,
+                          bool integer_time = false, const CsvDialect& dialect = {});
 
 // Throws InputError unless column `col` strictly increases, also once multiplied by `to_seconds` (two
 // stamps a few ulp apart can become one); a step back or a repeated time stamp is named with its line.

@@ -32,6 +32,9 @@ struct RosRecording {
 struct TopicChoice {
   std::string imu_topic, mag_topic;  // empty: the only topic of that type, if there is exactly one
   std::string imu_option = "--imu-topic", mag_option = "--mag-topic";
+  // false: a file without an IMU topic is read for its magnetometer alone (`imucal magcal`), which is
+  // then required.
+  bool imu_required = true;
 };
 
 }  // namespace imucal::io
