@@ -1,16 +1,15 @@
 # What `cmake --install` puts where, in three components that are also the Debian packages
 # (cmake/packaging.cmake): imucal (the daemon and the hardware drivers, their configs, units and udev
 # rule), tools (the imucal CLI, the simulator publisher, the trigger, lcm-spy with our types) and dev.
-# Not installed: imucal-*-emulated and imucal-j1939-simlog drive emulated chips for the tests and demos,
-# and a board's programs carry no emulation (tests/integration/driver_layering.sh).
-install(TARGETS imucald imucal-icm42688 imucal-lis3mdl imucal-j1939 RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
-        COMPONENT imucal)
+# Which program goes where: cmake/programs.cmake.
+install(TARGETS ${IMUCAL_SERVICE_PROGRAMS} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT imucal)
 install(CODE "set(IMUCAL_SOURCE_DIR \"${PROJECT_SOURCE_DIR}\")
 set(IMUCAL_BINARY_DIR \"${PROJECT_BINARY_DIR}\")
-set(IMUCAL_INSTALL_BINDIR \"${CMAKE_INSTALL_BINDIR}\")" COMPONENT imucal)
+set(IMUCAL_INSTALL_BINDIR \"${CMAKE_INSTALL_BINDIR}\")
+set(IMUCAL_SERVICE_UNIT_TEMPLATES \"${IMUCAL_SERVICE_UNIT_TEMPLATES}\")" COMPONENT imucal)
 install(SCRIPT ${CMAKE_CURRENT_LIST_DIR}/install_system_files.cmake COMPONENT imucal)
 
-install(TARGETS imucal imucal-sim-pub imucal-trigger RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
+install(TARGETS ${IMUCAL_TOOL_PROGRAMS} RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT tools)
 # Debian's own /usr/bin/lcm-spy cannot start under Java 17 (see the script), hence a name of our own.
 install(PROGRAMS ${PROJECT_SOURCE_DIR}/scripts/lcm-spy DESTINATION ${CMAKE_INSTALL_BINDIR} RENAME imucal-lcm-spy
         COMPONENT tools)

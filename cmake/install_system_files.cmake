@@ -2,7 +2,8 @@
 # the prefix chosen at install time, not at configure time. Under /usr (a Debian package) configs go to
 # /etc and units and udev rules to /lib, as Debian 12's systemd and udev expect; under any other prefix
 # everything stays below it. file(INSTALL) adds DESTDIR and records the files in install_manifest.txt.
-# In: IMUCAL_SOURCE_DIR, IMUCAL_BINARY_DIR, IMUCAL_INSTALL_BINDIR (relative to the prefix).
+# In: IMUCAL_SOURCE_DIR, IMUCAL_BINARY_DIR, IMUCAL_INSTALL_BINDIR (relative to the prefix),
+# IMUCAL_SERVICE_UNIT_TEMPLATES (cmake/programs.cmake).
 set(prefix "${CMAKE_INSTALL_PREFIX}")
 if(prefix STREQUAL "/usr")
   set(etc_dir /etc)
@@ -24,10 +25,7 @@ file(INSTALL ${IMUCAL_SOURCE_DIR}/configs/imucald.yaml ${IMUCAL_SOURCE_DIR}/conf
 string(MD5 install_tag "$ENV{DESTDIR}|${prefix}")
 set(units_dir "${IMUCAL_BINARY_DIR}/systemd/${install_tag}")
 set(units)
-foreach(template ${IMUCAL_SOURCE_DIR}/daemon/systemd/imucald.service.in
-                 ${IMUCAL_SOURCE_DIR}/drivers/systemd/imucal-icm42688.service.in
-                 ${IMUCAL_SOURCE_DIR}/drivers/systemd/imucal-lis3mdl.service.in
-                 ${IMUCAL_SOURCE_DIR}/drivers/systemd/imucal-j1939.service.in)
+foreach(template ${IMUCAL_SERVICE_UNIT_TEMPLATES})
   get_filename_component(name "${template}" NAME_WLE)
   configure_file("${template}" "${units_dir}/${name}" @ONLY)
   list(APPEND units "${units_dir}/${name}")

@@ -33,9 +33,11 @@ set(configs imucald.yaml paper-calibrate.yaml icm42688.yaml lis3mdl.yaml j1939.y
 list(TRANSFORM configs PREPEND /etc/imucal/)
 string(REPLACE ";" "\n" conffiles "${configs}")
 file(WRITE ${PROJECT_BINARY_DIR}/packaging/imucal/conffiles "${conffiles}\n")
+# prerm stops the services (cmake/programs.cmake), named in it as @IMUCAL_SERVICE_UNITS_TEXT@.
+list(JOIN IMUCAL_SERVICE_UNITS " " IMUCAL_SERVICE_UNITS_TEXT)
 foreach(script postinst prerm postrm)
   configure_file(${PROJECT_SOURCE_DIR}/packaging/debian/${script} ${PROJECT_BINARY_DIR}/packaging/imucal/${script}
-                 COPYONLY FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
+                 @ONLY FILE_PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE GROUP_READ GROUP_EXECUTE
                  WORLD_READ WORLD_EXECUTE)
 endforeach()
 set(CPACK_DEBIAN_IMUCAL_PACKAGE_CONTROL_EXTRA ${PROJECT_BINARY_DIR}/packaging/imucal/conffiles

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 #include "imucal/core/allan.hpp"
 #include "imucal/core/consistency.hpp"
@@ -29,6 +30,13 @@
 namespace imucal {
 
 namespace {
+
+// Why parameter k is not converged, as a kind and in words (the caller decides what else changes).
+void setNotConverged(CalibrationResult& result, std::size_t k, NotConverged why, std::string words) {
+  result.not_converged[k] = why;
+  result.not_converged_reason[k] = std::move(words);
+}
+
 
 void validate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading) {
   if (imu.size() < 10) throw std::invalid_argument("calibrate: need at least 10 IMU samples, got " + std::to_string(imu.size()));
@@ -279,9 +287,9 @@ void markConfounded(CalibrationResult& result, std::vector<int>& unconverged, do
     result.converged[static_cast<std::size_t>(c.index)] = false;
     result.convergence_time(c.index) = std::numeric_limits<double>::quiet_NaN();
     std::ostringstream reason;
-    reason << kConfoundedPrefix << (with.empty() ? "unconverged parameters" : with) << " ("
+    reason << "determined only in a combination with " << (with.empty() ? "unconverged parameters" : with) << " ("
            << static_cast<int>(c.share * 100.0 + 0.5) << " % of its variance is theirs)";
-    result.not_converged_reason[static_cast<std::size_t>(c.index)] = reason.str();
+    setNotConverged(result, static_cast<std::size_t>(c.index), NotConverged::Confounded, reason.str());
     unconverged.push_back(c.index);
   }
   std::sort(unconverged.begin(), unconverged.end());
@@ -352,10 +360,10 @@ void markUnsettled(CalibrationResult& result, const VecX& step, const VecX& prev
     const double to_go = alternating ? last : last / (1.0 - ratio);
     if (to_go <= 0.5) continue;
     std::ostringstream reason;
-    reason << kUnsettledPrefix << "the last pass moved it " << last << " sigma, about " << to_go << " to go";
+    reason << "the passes had not settled: the last pass moved it " << last << " sigma, about " << to_go << " to go";
     result.converged[k] = false;
     result.convergence_time(j) = std::numeric_limits<double>::quiet_NaN();
-    result.not_converged_reason[k] = reason.str();
+    setNotConverged(result, k, NotConverged::Unsettled, reason.str());
     moving.push_back(result.names[k]);
   }
   std::ostringstream msg;
@@ -392,6 +400,7 @@ void markConverged(CalibrationResult& result, const StateMat& P, const StateLayo
   constexpr int p0 = StateLayout::kParamStart;
   const MatX params_p = P.block(p0, p0, n, n);
   result.converged.assign(n, false);
+  result.not_converged.assign(n, NotConverged::No);
   result.not_converged_reason.assign(n, "");
   result.convergence_time = VecX::Constant(n, std::numeric_limits<double>::quiet_NaN());
   std::vector<double> t, x, s;
@@ -404,15 +413,16 @@ void markConverged(CalibrationResult& result, const StateMat& P, const StateLayo
       s.push_back(e.sigmas(j));
     }
     if (layout.mode(layout.params()[static_cast<std::size_t>(j)].block) == BlockMode::Consider) {
-      result.not_converged_reason[j] = "considered, not estimated";
+      setNotConverged(result, j, NotConverged::Considered, "considered, not estimated");
       continue;
     }
     if (result.sigma(j) > sigma_ratio * result.prior_sigma(j)) {
-      result.not_converged_reason[j] = "sigma above " + std::to_string(sigma_ratio) + " of the prior";
+      setNotConverged(result, j, NotConverged::SigmaAbovePrior,
+                      "sigma above " + std::to_string(sigma_ratio) + " of the prior");
       continue;
     }
     if (limitedByGravity(params_p, layout, j)) {
-      result.not_converged_reason[j] = kLimitedByGravity;
+      setNotConverged(result, j, NotConverged::LimitedByGravity, "limited by the unknown gravity magnitude");
       continue;
     }
     result.converged[j] = true;
@@ -603,8 +613,9 @@ void uncompared(CalibrationResult& result, const std::string& why) {
     if (!result.converged[k]) continue;
     result.converged[k] = false;
     result.convergence_time(static_cast<Eigen::Index>(k)) = std::numeric_limits<double>::quiet_NaN();
-    result.not_converged_reason[k] = "the recording's halves could not be compared, and nothing is called converged "
-                                     "on the whole's word alone";
+    setNotConverged(result, k, NotConverged::HalvesNotCompared,
+                    "the recording's halves could not be compared, and nothing is called converged on the "
+                    "whole's word alone");
     withdrawn.push_back(result.names[k]);
   }
   std::string msg = "halves: not compared (" + why + ")";
@@ -640,7 +651,7 @@ void compareHalves(const Halves& h, CalibrationResult& result) {
     std::ostringstream msg;
     msg << "the recording's halves disagree: " << a.estimate(j) << " +- " << a.sigma(j) << " vs " << b.estimate(j)
         << " +- " << b.sigma(j) << " (SI, " << z << " sigma)";
-    result.not_converged_reason[k] = msg.str();
+    setNotConverged(result, k, NotConverged::HalvesDisagree, msg.str());
   }
 }
 

@@ -327,7 +327,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
                             0.5 * (e.step * e.step * ha + c.effect->step * c.effect->step * hb);
         const double hab = (fij - rest) / (e.step * c.effect->step);
         const double rho = hab / std::sqrt(ha * hb);  // -I_ab / sqrt(I_aa I_bb) with I = -H
-        if (std::abs(rho) > 0.5) s.correlated.emplace_back(c.effect->id, rho);
+        if (std::abs(rho) > options.reported_correlation) s.correlated.emplace_back(c.effect->id, rho);
       }
     }
     e.set(model, named.value);

@@ -43,6 +43,22 @@ std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
   }};
 }
 
+// Everything downstream indexes the table by the enum and sizes fixed buffers from kParamBlockSizes, so a
+// row out of order or with a different component count would corrupt memory silently in a release build.
+std::array<ParamBlockInfo, kParamBlockCount> checkedTable() {
+  std::array<ParamBlockInfo, kParamBlockCount> table = makeTable();
+  for (int i = 0; i < kParamBlockCount; ++i) {
+    const ParamBlockInfo& row = table[static_cast<std::size_t>(i)];
+    if (static_cast<int>(row.block) != i)
+      throw std::logic_error("parameter registry: row " + std::to_string(i) + " (" + row.id +
+                             ") is not in the ParamBlock enum's order");
+    if (row.size() != kParamBlockSizes[i])
+      throw std::logic_error("parameter registry: " + row.id + " has " + std::to_string(row.size()) +
+                             " components, kParamBlockSizes says " + std::to_string(kParamBlockSizes[i]));
+  }
+  return table;
+}
+
 }  // namespace
 
 std::string ParamBlockInfo::paramName(int component) const {
@@ -51,7 +67,7 @@ std::string ParamBlockInfo::paramName(int component) const {
 }
 
 const std::array<ParamBlockInfo, kParamBlockCount>& paramBlocks() {
-  static const std::array<ParamBlockInfo, kParamBlockCount> table = makeTable();
+  static const std::array<ParamBlockInfo, kParamBlockCount> table = checkedTable();
   return table;
 }
 
@@ -59,12 +75,6 @@ const ParamBlockInfo& blockInfo(ParamBlock block) {
   const int i = static_cast<int>(block);
   if (i < 0 || i >= kParamBlockCount) throw std::out_of_range("blockInfo: no such parameter block");
   return paramBlocks()[static_cast<std::size_t>(i)];
-}
-
-std::optional<ParamBlock> findBlock(const std::string& id) {
-  for (const auto& b : paramBlocks())
-    if (b.id == id) return b.block;
-  return std::nullopt;
 }
 
 std::optional<ParamRef> findParam(const std::string& name) {

@@ -1,6 +1,7 @@
 #include "imucal/core/state_layout.hpp"
 
 #include <stdexcept>
+#include <string>
 
 namespace imucal {
 
@@ -47,6 +48,8 @@ StateLayout StateLayout::make(const ModelOptions& options, bool centre_motion) {
     layout.centre_ = next;
     next += kCentreStates;
   }
+  if (next > kMaxSize) throw std::logic_error("StateLayout: " + std::to_string(next) + " states exceed the capacity " +
+                                              std::to_string(kMaxSize));
   layout.size = next;
   return layout;
 }

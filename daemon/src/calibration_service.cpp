@@ -162,10 +162,10 @@ bool CalibrationService::onImu(const std::string& id, const ImuSample& s, std::i
   }
   Sensor& sn = sensor(id);
   SensorReport& report = reports_[id];
-  const Verdict v = sn.gate.check(s, sequence);
+  const SampleVerdict v = sn.gate.check(s, sequence);
   report.imu = sn.gate.counters();
-  if (v != Verdict::Accept && v != Verdict::Gap) return false;
-  if (v == Verdict::Gap) sn.detector.reset();  // a session must not span a hole in the data
+  if (v != SampleVerdict::Accept && v != SampleVerdict::Gap) return false;
+  if (v == SampleVerdict::Gap) sn.detector.reset();  // a session must not span a hole in the data
   if (!config_.automatic_sessions && !sn.armed) return false;
   const SessionPhase before = sn.detector.phase();
   std::optional<Session> session = sn.detector.push(s);

@@ -14,6 +14,8 @@ namespace imucal::daemon {
 namespace {
 // Enough for the convergence times; a session at 8 kHz would otherwise keep 0.5 kB for each sample.
 constexpr std::size_t kMaxHistoryEpochs = 5000;
+// The daemon's session is a turn about the vertical (body z down): its gyro bias needs heading to settle.
+constexpr int kTurnAxis = 2;
 
 CalibrationResult run(const SessionInput& in, const std::vector<HeadingSample>& heading, const FilterConfig& filter) {
   CalibrateOptions options;
@@ -162,9 +164,9 @@ SessionOutcome calibrateSession(const SessionInput& in) {
   for (std::size_t j = 0; j < refs.size() && c.incomplete.empty(); ++j) {
     const bool bias = refs[j].block == ParamBlock::AccelBias || refs[j].block == ParamBlock::GyroBias;
     if (!bias || result.converged[j]) continue;
-    if (refs[j].block == ParamBlock::GyroBias && refs[j].component == 2) continue;
-    if (result.not_converged_reason[j] == kLimitedByGravity) continue;
-    if (result.not_converged_reason[j].rfind(kConfoundedPrefix, 0) == 0) continue;  // reported as a combination
+    if (refs[j].block == ParamBlock::GyroBias && refs[j].component == kTurnAxis) continue;
+    if (result.not_converged[j] == NotConverged::LimitedByGravity) continue;
+    if (result.not_converged[j] == NotConverged::Confounded) continue;  // reported as a combination
     c.incomplete = "session did not converge (" + result.names[j] + ": " + result.not_converged_reason[j] + ")";
   }
   c.sensor_id = in.sensor_id;

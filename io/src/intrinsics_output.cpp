@@ -3,8 +3,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <iomanip>
 #include <sstream>
+
+#include "imucal/io/number_text.hpp"
 
 namespace imucal::io {
 
@@ -136,15 +137,8 @@ std::string kalibrImuYaml(const CalibrationResult& result, const ExportedParams&
 
 namespace {
 
-// Every digit a double needs to come back unchanged through strtod (OpenCV's reader).
-std::string exact(double v) {
-  std::ostringstream s;
-  s << std::setprecision(17) << v;
-  std::string text = s.str();
-  // "1" would read back as an integer node; OpenCV converts it, but a real number says what it is.
-  if (text.find_first_of(".eE") == std::string::npos && text.find_first_of("ni") == std::string::npos) text += ".0";
-  return text;
-}
+// Every digit a double needs to come back unchanged (these files are read by yaml-cpp, OpenCV and ROS).
+std::string exact(double v) { return formatExactReal(v); }
 
 void openVinsMatrix(std::ostringstream& out, const std::string& key, const Mat3& m) {
   out << "  " << key << ":\n";

@@ -1,21 +1,16 @@
 #include "imucal/io/noise_output.hpp"
 
 #include <cmath>
-#include <iomanip>
 #include <sstream>
+
+#include "imucal/io/number_text.hpp"
 
 namespace imucal::io {
 
 namespace {
 
 // Every digit a double needs to come back unchanged (these files are read by yaml-cpp, OpenCV and ROS).
-std::string exact(double v) {
-  std::ostringstream s;
-  s << std::setprecision(17) << v;
-  std::string text = s.str();
-  if (text.find_first_of(".eEni") == std::string::npos) text += ".0";
-  return text;
-}
+std::string exact(double v) { return formatExactReal(v); }
 
 void notes(std::ostringstream& out, const ToolNoise& n) {
   for (const std::string& line : n.notes) out << "# " << line << "\n";

@@ -33,6 +33,12 @@ std::string formatExact(double value) {
   return std::string(buffer.data(), ptr);
 }
 
+std::string formatExactReal(double value) {
+  std::string text = formatExact(value);
+  if (text.find_first_of(".eEni") == std::string::npos) text += ".0";
+  return text;
+}
+
 std::string formatRounded(double value, int digits) {
   if (!std::isfinite(value)) return formatExact(value);
   std::array<char, 64> buffer{};

@@ -24,8 +24,21 @@ bool executable(const std::string& path) {
   return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode) && (st.st_mode & S_IXOTH);
 }
 
-const std::vector<std::string> kUnits = {"imucald.service", "imucal-icm42688.service", "imucal-lis3mdl.service",
-                                         "imucal-j1939.service"};
+// A list of cmake/programs.cmake (space-separated, as the build passes it).
+std::vector<std::string> programs(const std::string& list) {
+  std::istringstream in(list);
+  std::vector<std::string> names;
+  for (std::string name; in >> name;) names.push_back(name);
+  return names;
+}
+
+// Every service program runs from the unit of its name.
+std::vector<std::string> serviceUnits() {
+  std::vector<std::string> units;
+  for (const auto& p : programs(IMUCAL_SERVICE_PROGRAMS)) units.push_back(p + ".service");
+  return units;
+}
+const std::vector<std::string> kUnits = serviceUnits();
 
 std::string execStart(const std::string& unit_text) {
   std::smatch m;
@@ -37,10 +50,14 @@ std::string execStart(const std::string& unit_text) {
 TEST(InstallTree, HoldsEveryFileAndNoTestProgram) {
   const auto& t = installedTree();
   ASSERT_TRUE(t.ok) << t.log;
-  for (const char* p : {"imucald", "imucal-icm42688", "imucal-lis3mdl", "imucal-j1939", "imucal", "imucal-sim-pub",
-                        "imucal-trigger", "imucal-lcm-spy"})
-    EXPECT_TRUE(executable(t.inTree(t.bin(p)))) << p;
-  for (const char* p : {"imucal-icm42688-emulated", "imucal-lis3mdl-emulated", "imucal-j1939-simlog"})
+  std::vector<std::string> installed = programs(IMUCAL_SERVICE_PROGRAMS);
+  for (const auto& p : programs(IMUCAL_TOOL_PROGRAMS)) installed.push_back(p);
+  installed.push_back("imucal-lcm-spy");  // a script, not a built program
+  // The daemon, three drivers, three tools and the script: a list that lost a program fails here too.
+  EXPECT_EQ(installed.size(), 8u);
+  for (const auto& p : installed) EXPECT_TRUE(executable(t.inTree(t.bin(p)))) << p;
+  EXPECT_EQ(programs(IMUCAL_EMULATION_PROGRAMS).size(), 3u);
+  for (const auto& p : programs(IMUCAL_EMULATION_PROGRAMS))
     EXPECT_FALSE(fs::exists(t.inTree(t.bin(p)))) << p << " is for tests and demos";
   std::vector<std::string> files = {
       "/share/java/imucal-lcmtypes.jar",         "/share/cmake/imucal/imucalConfig.cmake",

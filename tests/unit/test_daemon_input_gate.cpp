@@ -18,18 +18,18 @@ ImuSample sample(double t) {
 
 TEST(DaemonInputGate, CountsEveryReason) {
   InputGate gate;
-  EXPECT_EQ(gate.check(sample(0.00), 0), Verdict::Accept);
-  EXPECT_EQ(gate.check(sample(0.01), 1), Verdict::Accept);
+  EXPECT_EQ(gate.check(sample(0.00), 0), SampleVerdict::Accept);
+  EXPECT_EQ(gate.check(sample(0.01), 1), SampleVerdict::Accept);
   ImuSample nan = sample(0.02);
   nan.gyro.y() = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(gate.check(nan, 2), Verdict::RejectNotFinite);
-  EXPECT_EQ(gate.check(sample(0.005), 3), Verdict::RejectTimeBackwards);
-  EXPECT_EQ(gate.check(sample(0.01), 1), Verdict::RejectDuplicate);
+  EXPECT_EQ(gate.check(nan, 2), SampleVerdict::RejectNotFinite);
+  EXPECT_EQ(gate.check(sample(0.005), 3), SampleVerdict::RejectTimeBackwards);
+  EXPECT_EQ(gate.check(sample(0.01), 1), SampleVerdict::RejectDuplicate);
   ImuSample wild = sample(0.03);
   wild.accel.x() = 1e6;
-  EXPECT_EQ(gate.check(wild, 4), Verdict::RejectOutOfRange);
-  EXPECT_EQ(gate.check(sample(0.04), 6), Verdict::Accept);  // sequence 2..5 never arrived accepted
-  EXPECT_EQ(gate.check(sample(0.50), 7), Verdict::Gap);
+  EXPECT_EQ(gate.check(wild, 4), SampleVerdict::RejectOutOfRange);
+  EXPECT_EQ(gate.check(sample(0.04), 6), SampleVerdict::Accept);  // sequence 2..5 never arrived accepted
+  EXPECT_EQ(gate.check(sample(0.50), 7), SampleVerdict::Gap);
   const InputCounters& c = gate.counters();
   EXPECT_EQ(c.accepted, 4u);
   EXPECT_EQ(c.not_finite, 1u);
@@ -39,7 +39,7 @@ TEST(DaemonInputGate, CountsEveryReason) {
   EXPECT_EQ(c.gaps, 1u);
   EXPECT_EQ(c.sequence_drops, 4u);
   EXPECT_EQ(c.rejected(), 4u);
-  EXPECT_EQ(verdictName(Verdict::RejectTimeBackwards), "time_backwards");
+  EXPECT_EQ(sampleVerdictName(SampleVerdict::RejectTimeBackwards), "time_backwards");
 }
 
 }  // namespace

@@ -231,6 +231,7 @@ TEST(Gravity, UnknownMagnitudeIsCarriedIntoTheAccelerometerZBias) {
     EXPECT_NE(r.warnings[0].find("gravity"), std::string::npos);
     const std::size_t z = indexOf(r, "accel_bias_z");
     EXPECT_FALSE(r.converged[z]) << "seed " << seed;
+    EXPECT_EQ(r.not_converged[z], NotConverged::LimitedByGravity);
     EXPECT_EQ(r.not_converged_reason[z], "limited by the unknown gravity magnitude");
     // The bias's sigma now covers gravity's range; its error (the 11.8 mg gravity offset) is within it.
     EXPECT_GT(r.sigma(static_cast<Eigen::Index>(z)), 0.01);
@@ -353,6 +354,7 @@ TEST(Consider, ALeftOutBlockStillWidensTheSigmasItConfounds) {
   const auto sz = static_cast<Eigen::Index>(indexOf(b, "accel_scale_z"));
   EXPECT_EQ(b.estimate(sz), 0.0);
   EXPECT_NEAR(b.sigma(sz), considered.model[ParamBlock::AccelScale].sigma, 1e-12);
+  EXPECT_EQ(b.not_converged[static_cast<std::size_t>(sz)], NotConverged::Considered);
   EXPECT_EQ(b.not_converged_reason[static_cast<std::size_t>(sz)], "considered, not estimated");
 }
 

@@ -38,6 +38,7 @@ TEST(Halves, ABiasThatJumpsHalfwayIsNotConverged) {
   EXPECT_TRUE(plain.converged[gx]);  // what the whole recording alone would claim
   EXPECT_FALSE(checked.converged[gx]);
   EXPECT_GT(std::abs(checked.halves_z(3)), 4.0);
+  EXPECT_EQ(checked.not_converged[gx], NotConverged::HalvesDisagree);
   EXPECT_NE(checked.not_converged_reason[gx].find("halves disagree"), std::string::npos)
       << checked.not_converged_reason[gx];
   // The other axis's bias did not move and stays converged.

@@ -78,6 +78,23 @@ TEST(StateLayout, BlocksFollowTheRegistryContiguously) {
   EXPECT_EQ(StateLayout::make(m).mode(ParamBlock::GyroBias), BlockMode::Consider);
 }
 
+TEST(StateLayout, TheFullModelFillsTheFiltersCapacityExactly) {
+  // Position, velocity, attitude (9), the 34 parameters counted above, the centre's displacement and
+  // velocity (6): the fixed-size buffers of error_dynamics.hpp hold exactly this, no more, no less.
+  ModelOptions m;
+  for (const auto& b : paramBlocks()) m[b.block].mode = BlockMode::Estimate;
+  const StateLayout full = StateLayout::make(m, true);
+  EXPECT_EQ(full.size, 9 + 34 + 6);
+  EXPECT_EQ(full.size, StateLayout::kMaxSize);
+  EXPECT_EQ(full.paramCount(), 34);
+  EXPECT_EQ(full.centre(), 9 + 34);
+  // Every block's components as the table lists them, in the enum's order.
+  for (int i = 0; i < kParamBlockCount; ++i) {
+    EXPECT_EQ(static_cast<int>(paramBlocks()[static_cast<std::size_t>(i)].block), i);
+    EXPECT_EQ(paramBlocks()[static_cast<std::size_t>(i)].size(), kParamBlockSizes[i]);
+  }
+}
+
 TEST(ParamUnits, HumanUnitsComeFromTheRegistry) {
   EXPECT_EQ(io::paramUnit("accel_bias_x").human, "ug");
   EXPECT_DOUBLE_EQ(io::paramUnit("accel_bias_x").factor, 1e-6 * units::kStandardGravity);

@@ -232,7 +232,7 @@ CalibrationResult calibrateRotate(bool with_heading) {
 // the combination is reported. Never silently unconverged.
 void expectConvergedOrInACombination(const CalibrationResult& result, std::size_t j, const std::string& label) {
   if (result.converged[j]) return;
-  EXPECT_EQ(result.not_converged_reason[j].rfind(kConfoundedPrefix, 0), 0u) << label << ": " << result.not_converged_reason[j];
+  EXPECT_EQ(result.not_converged[j], NotConverged::Confounded) << label << ": " << result.not_converged_reason[j];
   bool named = false;
   for (const ParamCombination& comb : result.combinations)
     for (const auto& term : comb.terms) named = named || term.first == result.names[j];

@@ -54,8 +54,13 @@ copy_with_libs "$(command -v ip)" "$stage/imucal/bin"
 with_drivers=0
 if [ -f "$src/drivers/CMakeLists.txt" ]; then
   with_drivers=1
-  for d in imucal-icm42688 imucal-lis3mdl imucal-j1939; do copy_with_libs "$build/drivers/$d" "$stage/imucal/bin"; done
-  copy_with_libs "$build/daemon/imucald" "$stage/imucal/bin"
+  # The board's service programs (the daemon and the drivers), as cmake/programs.cmake lists them.
+  # shellcheck source=/dev/null
+  . "$build/imucal-programs.sh"
+  for p in $IMUCAL_SERVICE_PROGRAMS; do
+    var="imucal_built_$(printf '%s' "$p" | tr -c 'A-Za-z0-9_' '_')"
+    copy_with_libs "${!var}" "$stage/imucal/bin"
+  done
   copy_with_libs "$(command -v lcm-logger)" "$stage/imucal/bin"
   copy_with_libs "$build/tests/imucal-cal-check" "$stage/imucal/bin"
   cp -r "$src/configs" "$stage/imucal/configs"

@@ -33,6 +33,19 @@ struct EpochRecord {
 };
 
 
+// Why a parameter is not called converged; decisions key on this, the words (not_converged_reason) are for
+// people.
+enum class NotConverged {
+  No,                 // converged
+  Considered,         // a considered state: no measurement updates it
+  SigmaAbovePrior,    // its sigma is not far enough below the prior's
+  LimitedByGravity,   // most of its variance is the unknown gravity magnitude's
+  Confounded,         // determined only in a combination with unconverged parameters (see combinations.hpp)
+  Unsettled,          // the passes were still moving it when they stopped
+  HalvesNotCompared,  // a half could not calibrate alone, so nothing is called converged on the whole's word
+  HalvesDisagree,     // the recording's halves calibrated alone disagree
+};
+
 struct CalibrationResult {
   StateLayout layout;
   std::vector<std::string> names;  // parameter names in state order
@@ -40,7 +53,8 @@ struct CalibrationResult {
   VecX sigma;                      // 1-sigma, SI
   VecX prior_sigma;                // 1-sigma before any data
   std::vector<bool> converged;     // sigma well below the prior and the estimate settled
-  std::vector<std::string> not_converged_reason;  // why not, per parameter ("" when converged)
+  std::vector<NotConverged> not_converged;         // why not, per parameter (No when converged)
+  std::vector<std::string> not_converged_reason;  // the same in words ("" when converged)
   // Said once per calibration: what the result rests on that the user did not give (gravity...).
   std::vector<std::string> warnings;
   // Factor each sigma was multiplied by because the innovations were larger than modelled or the
@@ -81,17 +95,10 @@ struct CalibrationResult {
   std::vector<Eskf::Innovation> innovations;
 };
 
-// not_converged_reason of a parameter whose sigma is mostly the unknown gravity magnitude's.
-inline constexpr const char* kLimitedByGravity = "limited by the unknown gravity magnitude";
 // Whether most of parameter j's variance is the unknown gravity magnitude's (the accelerometer z bias on a
 // level turn when g is not given): such a value says more about the assumed gravity than about the sensor.
 // param_covariance: the parameters' covariance in state order.
 bool limitedByGravity(const MatX& param_covariance, const StateLayout& layout, int j);
-
-// Start of the reason of a parameter the passes were still moving when they ran out.
-inline constexpr const char* kUnsettledPrefix = "the passes had not settled: ";
-// Start of the reason of a parameter whose variance is mostly that of unconverged ones (see combinations).
-inline constexpr const char* kConfoundedPrefix = "determined only in a combination with ";
 
 struct CalibrateOptions {
   bool keep_innovations = false;

@@ -19,8 +19,9 @@ struct DiagnoseOptions {
   int max_steps = 4;
   // Still stretches at least this long are used for the Allan deviation of the noise terms.
   double allan_min_still = 60.0;  // s
-  // Correlation above which two effects are reported as indistinguishable on this motion.
-  double indistinguishable_correlation = 0.95;
+  // A named effect's estimate correlating beyond this with another candidate's is reported with it (the
+  // motion tells the two apart only that well).
+  double reported_correlation = 0.5;
   // Told before each candidate effect is tested (round, effect id): a diagnosis runs the filter many times.
   // fraction: of the work if every round ran, so an upper bound on what is left (it jumps to the end when
   // a round finds nothing).

@@ -13,7 +13,7 @@
 
 namespace imucal {
 
-constexpr int kMaxStates = 52;  // the full model, lever arm and gravity (43) and the centre's motion (6)
+constexpr int kMaxStates = StateLayout::kMaxSize;
 using StateVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxStates, 1>;
 using StateMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxStates, kMaxStates>;
 

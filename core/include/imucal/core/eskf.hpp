@@ -97,8 +97,6 @@ class Eskf {
   const VecX& params() const { return params_; }
   const StateMat& covariance() const { return P_; }
   const StateLayout& layout() const { return layout_; }
-  // The sensor model at the nominal parameters (blocks outside the state at their configured values).
-  const CalibrationParams& sensorModel() const { return model_; }
   // The raw sample corrected with the current parameter estimates.
   ImuSample corrected(const ImuSample& raw) const;
 

@@ -33,7 +33,19 @@ enum class ParamBlock : int {
   // pseudo-observations speak of the centre (see lever_arm.hpp).
   LeverArm,
 };
-constexpr int kParamBlockCount = 9;
+// Components per block, in the enum's order: the state capacity is derived from these at compile time, and
+// the table (param_registry.cpp) is checked against them when it is first built, in every build type.
+inline constexpr int kParamBlockSizes[] = {3, 3, 3, 3, 3, 6, 9, 1, 3};
+constexpr int kParamBlockCount = static_cast<int>(sizeof(kParamBlockSizes) / sizeof(kParamBlockSizes[0]));
+static_assert(static_cast<int>(ParamBlock::LeverArm) == kParamBlockCount - 1,
+              "kParamBlockSizes needs one entry per ParamBlock, in the enum's order");
+// Parameters when every block is a state.
+constexpr int paramStatesOfAllBlocks() {
+  int n = 0;
+  for (int s : kParamBlockSizes) n += s;
+  return n;
+}
+constexpr int kParamStates = paramStatesOfAllBlocks();
 
 // Off: not in the state, its value (the prior mean) applied as known. Estimate: a filter state. Consider:
 // a state whose uncertainty is propagated into the others but which no measurement updates (Schmidt), so
@@ -63,10 +75,10 @@ struct ParamBlockInfo {
   std::string paramName(int component) const;
 };
 
-// The table, in state order.
+// The table, in state order: paramBlocks()[i].block is ParamBlock i and has kParamBlockSizes[i] components
+// (checked when it is built: std::logic_error otherwise).
 const std::array<ParamBlockInfo, kParamBlockCount>& paramBlocks();
 const ParamBlockInfo& blockInfo(ParamBlock block);
-std::optional<ParamBlock> findBlock(const std::string& id);
 
 // One parameter: a block and a component of it.
 struct ParamRef {

@@ -44,6 +44,8 @@ struct StateLayout {
   // The hand's displacement of the turn's centre and its velocity (NED), after the parameters when the
   // centre's motion is modelled (see CentreMotionConfig).
   static constexpr int kCentreStates = 6;
+  // Every block a state and the centre's motion: the filter's fixed-size buffers hold this many.
+  static constexpr int kMaxSize = kParamStart + kParamStates + kCentreStates;
 
   int size = kCoreSize;
 

@@ -97,7 +97,6 @@ class CalibrationService {
   bool restore(const std::string& sensor_id);
 
   const std::map<std::string, SensorReport>& reports() const { return reports_; }
-  std::uint64_t headingsRejected() const { return heading_rejected_; }
   std::uint64_t unknownSensorRejected() const { return unknown_sensor_rejected_; }
   const ServiceConfig& config() const { return config_; }
   // Background calibration: readable when a calibration finished; -1 otherwise.

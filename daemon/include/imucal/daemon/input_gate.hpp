@@ -8,9 +8,9 @@
 
 namespace imucal::daemon {
 
-enum class Verdict { Accept, Gap, RejectNotFinite, RejectTimeBackwards, RejectDuplicate, RejectOutOfRange };
+enum class SampleVerdict { Accept, Gap, RejectNotFinite, RejectTimeBackwards, RejectDuplicate, RejectOutOfRange };
 
-std::string verdictName(Verdict v);
+std::string sampleVerdictName(SampleVerdict v);
 
 struct InputGateConfig {
   double max_gap = 0.1;          // s between samples before the stream counts as interrupted
@@ -33,7 +33,7 @@ class InputGate {
  public:
   explicit InputGate(InputGateConfig config = {}) : config_(config) {}
   // `sequence` < 0 when the source has none. Gap means accepted, after an interruption.
-  Verdict check(const ImuSample& s, std::int64_t sequence = -1);
+  SampleVerdict check(const ImuSample& s, std::int64_t sequence = -1);
   const InputCounters& counters() const { return counters_; }
   void reset() { has_last_ = false; }
   void setConfig(const InputGateConfig& config) { config_ = config; }

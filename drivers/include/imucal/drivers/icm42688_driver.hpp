@@ -71,7 +71,6 @@ class Icm42688Driver {
 
   State state() const { return state_; }
   const Counters& counters() const { return counters_; }
-  const RegisterTable& registerTable() const { return table_; }
   double accelLsb() const { return accel_lsb_; }  // m/s^2 per count
   double gyroLsb() const { return gyro_lsb_; }    // rad/s per count
 

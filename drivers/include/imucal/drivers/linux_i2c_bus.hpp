@@ -25,7 +25,6 @@ class LinuxI2cBus final : public I2cBus {
   // 32 on SMBus-only adapters; I2C_RDWR: i2c-dev refuses messages over 8192 bytes.
   std::size_t maxReadLength() const override;
 
-  bool usesPlainI2c() const { return plain_i2c_; }
 
  private:
   void selectDevice(std::uint8_t address);

@@ -18,6 +18,9 @@ ParsedNumber parseNumber(std::string_view text);
 
 // Shortest text that reads back as exactly the same double (round trips are lossless).
 std::string formatExact(double value);
+// The same, always read as a real number: ".0" after an integer ("1" would be an integer node to YAML and
+// OpenCV readers).
+std::string formatExactReal(double value);
 
 // At most `digits` significant digits, for people: hides float noise such as 0.15000000000000002.
 std::string formatRounded(double value, int digits = 12);
