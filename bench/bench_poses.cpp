@@ -24,7 +24,7 @@ double processCpuSeconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
-// configs/poses-sim.yaml, the recording the README's raw-count study calibrates too.
+// configs/poses-sim.yaml, the recording the raw-count study (docs/results.md) calibrates too.
 const sim::SimOutput& posesRecording() {
   static const sim::SimOutput out = sim::simulate(io::loadSimConfig(std::string(IMUCAL_CONFIG_DIR) + "/poses-sim.yaml"), 3);
   return out;

@@ -40,7 +40,7 @@ for d in "${debs[@]}"; do
 done
 
 step "lintian"
-# Not fatal: what remains is listed in the README's Install section with why it stays.
+# Not fatal: what remains is listed in docs/install.md with why it stays.
 lintian --tag-display-limit 0 "${debs[@]}" || true
 
 step "Debian 12 root (cache: $cache)"

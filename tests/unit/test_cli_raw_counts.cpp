@@ -92,7 +92,7 @@ void simulateCounts(const std::filesystem::path& dir) {
 
 // Sensitivities 30-50 % off the datasheet, offsets of 0.1 g and 5 deg/s (the protocol's five turns about the
 // vertical are what the stills cannot show: the start reads them from the heading's change), seed 3 of the
-// study in the README.
+// study in docs/results.md (Raw counts).
 TEST(CliRawCounts, HalfAgainOffTheDatasheetWithLargeOffsetsReachesTheAnswer) {
   imucal::testing::ScratchDir scratch;
   const auto path = [&](const std::string& name) { return (scratch.path() / name).string(); };

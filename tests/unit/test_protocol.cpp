@@ -38,7 +38,7 @@ TEST_F(ProtocolTest, PlanCallsEveryParameterOfTheFullModelDetermined) {
   EXPECT_TRUE(plan["next"]["reveals"].empty());
 }
 
-// Ten seeds (the README's table has fifty), judged by expectHonestStudy.
+// Ten seeds (docs/protocol.md's table has fifty), judged by expectHonestStudy.
 TEST_F(ProtocolTest, TenSeedsCalibrateEveryParameterHonestly) {
   const CommandRun r = run("montecarlo " + kProtocol + " --runs 10 --seed 101 --threads 2 --out-md " + path("mc.md") +
                            " --out-json " + path("mc.json"));
