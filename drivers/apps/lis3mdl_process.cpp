@@ -3,11 +3,22 @@
 #include <spdlog/spdlog.h>
 
 #include "imucal/drivers/clock.hpp"
+#include "imucal/drivers/counters.hpp"
 #include "imucal/drivers/lis3mdl_driver.hpp"
 #include "imucal/drivers/mag_heading.hpp"
 #include "tilt_input.hpp"
 
 namespace imucal::drivers::node {
+
+namespace {
+
+// The heading's counters, logged after the driver's.
+enum class HeadingCounter { headings, no_tilt };
+constexpr CounterName<HeadingCounter> kHeadingCounters[] = {{HeadingCounter::headings, "headings"},
+                                                            {HeadingCounter::no_tilt, "no_tilt"}};
+constexpr const auto& counterNames(HeadingCounter) { return kHeadingCounters; }
+
+}  // namespace
 
 int runLis3mdl(const DriverOptions& o, const Lis3mdlDeviceOpener& open) {
   const Lis3mdlFileConfig cfg = loadLis3mdlConfig(o.config);
@@ -29,7 +40,7 @@ int runLis3mdl(const DriverOptions& o, const Lis3mdlDeviceOpener& open) {
                tilt.sensorId().empty() ? std::string("any sensor") : tilt.sensorId(), cfg.process.channel);
   if (!cfg.field_channel.empty()) spdlog::info("raw field as {} on {}", cfg.process.sensor_id, cfg.field_channel);
 
-  Counters heading_counters({"headings", "no_tilt"});
+  Counters<HeadingCounter> heading_counters;
   std::uint64_t published = 0;
   std::int64_t field_seq = 0;
   device->wire(loop, [&](std::optional<std::int64_t> edge) {
@@ -43,7 +54,7 @@ int runLis3mdl(const DriverOptions& o, const Lis3mdlDeviceOpener& open) {
     }
     const auto t = tilt.tracker().at(r->utime);
     if (!t) {
-      heading_counters.increment("no_tilt");
+      heading_counters.increment(HeadingCounter::no_tilt);
       return;
     }
     const MagHeading h = headingFromField(r->field, *t, cfg.heading);
@@ -54,7 +65,7 @@ int runLis3mdl(const DriverOptions& o, const Lis3mdlDeviceOpener& open) {
     m.source = imucal::heading_sample_t::SOURCE_MAGNETOMETER;
     lcm.publish(cfg.process.channel, &m);
     if (o.print) printSample(m);
-    heading_counters.increment("headings");
+    heading_counters.increment(HeadingCounter::headings);
     if (o.max_samples > 0 && ++published >= o.max_samples) loop.stop();
   });
   verifyPeriodically(loop, cfg.process.config_check_period_s, [&] { return driver.verifyConfiguration(); });

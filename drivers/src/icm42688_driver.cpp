@@ -56,11 +56,6 @@ bool saturated(std::int16_t v) { return v >= 32767 || v <= -32767; }
 
 Icm42688Driver::Icm42688Driver(I2cBus& bus, const Icm42688Config& config, Clock& clock)
     : config_(config),
-      counters_({"samples", "bus_errors", "bus_retries", "transfer_failures", "resets", "who_am_i_mismatch",
-                 "reset_not_cleared", "configure_failed", "config_mismatch", "config_reapply_failed",
-                 "data_not_ready", "empty_polls", "invalid_data", "accel_saturated", "gyro_saturated",
-                 "timestamp_backwards", "stale_edge", "missed_samples", "fifo_reads", "fifo_overflow", "fifo_bad_count",
-                 "fifo_bad_header", "fifo_empty_read", "fifo_invalid_data", "fifo_flushes", "fifo_period_stamps"}),
       device_(bus, config.address, config.retry, clock, counters_, reg::REG_BANK_SEL),
       stamper_(config.odr_hz, counters_),
       table_(makeTable(config)) {
@@ -77,12 +72,12 @@ void Icm42688Driver::runStateMachine() {
         device_.selectBank(0);
         const std::uint8_t who = device_.readReg(reg::WHO_AM_I);
         if (who != kWhoAmIValue) {
-          counters_.increment("who_am_i_mismatch");
+          counters_.increment(Icm42688Counter::who_am_i_mismatch);
           throw DeviceError(device_.name() + ": WHO_AM_I (0x75) reads " + hexByte(who) + ", expected " +
                             hexByte(kWhoAmIValue) + " for an ICM-42688-P");
         }
         device_.writeReg(reg::DEVICE_CONFIG, SOFT_RESET_CONFIG);
-        counters_.increment("resets");
+        counters_.increment(Icm42688Counter::resets);
         device_.clock().sleepUs(kSoftResetWaitUs);
         state_ = State::WaitForReset;
         break;
@@ -96,7 +91,7 @@ void Icm42688Driver::runStateMachine() {
           cleared = (device_.readReg(reg::DEVICE_CONFIG) & SOFT_RESET_CONFIG) == 0;
           if (!cleared) device_.clock().sleepUs(kSoftResetWaitUs);
         }
-        if (!cleared) counters_.increment("reset_not_cleared");
+        if (!cleared) counters_.increment(Icm42688Counter::reset_not_cleared);
         state_ = State::Configure;
         break;
       }
@@ -137,8 +132,8 @@ ImuReading Icm42688Driver::toReading(const std::int16_t accel_counts[3], const s
     if (saturated(accel_counts[i])) r.status |= status::kAccelSaturated;
     if (saturated(gyro_counts[i])) r.status |= status::kGyroSaturated;
   }
-  if (r.status & status::kAccelSaturated) counters_.increment("accel_saturated");
-  if (r.status & status::kGyroSaturated) counters_.increment("gyro_saturated");
+  if (r.status & status::kAccelSaturated) counters_.increment(Icm42688Counter::accel_saturated);
+  if (r.status & status::kGyroSaturated) counters_.increment(Icm42688Counter::gyro_saturated);
   r.accel = config_.axis_map.apply(accel);
   r.gyro = config_.axis_map.apply(gyro);
   return r;
@@ -150,7 +145,7 @@ void Icm42688Driver::flushFifo() {
   // INT_STATUS still holds the FIFO_FULL / FIFO_THS of what was flushed (the start-up wait fills the FIFO
   // at 8 kHz): reading clears them, so the next read does not take them for a new overflow.
   device_.readReg(reg::INT_STATUS);
-  counters_.increment("fifo_flushes");
+  counters_.increment(Icm42688Counter::fifo_flushes);
   last_odr_time_.reset();
   stamper_.restart();  // the records after a flush do not continue the ones before
 }
@@ -165,7 +160,7 @@ std::optional<ImuReading> Icm42688Driver::read(std::optional<std::int64_t> edge_
     const std::int64_t read_utime = device_.clock().nowUtime();
     if ((b[kBurstLength - 1] & DATA_RDY_INT) == 0) {
       // Polled without a data-ready line, an empty poll is expected (the poll runs faster than the ODR).
-      counters_.increment(edge_utime ? "data_not_ready" : "empty_polls");
+      counters_.increment(edge_utime ? Icm42688Counter::data_not_ready : Icm42688Counter::empty_polls);
       return std::nullopt;
     }
     std::int16_t raw[7];
@@ -173,16 +168,16 @@ std::optional<ImuReading> Icm42688Driver::read(std::optional<std::int64_t> edge_
     bool all_invalid = true;
     for (int i = 1; i < 7; ++i) all_invalid = all_invalid && raw[i] == kInvalidSample;
     if (all_invalid) {
-      counters_.increment("invalid_data");
+      counters_.increment(Icm42688Counter::invalid_data);
       return std::nullopt;
     }
     ImuReading r = toReading(raw + 1, raw + 4);
     r.temperature_c = raw[0] / kTempLsbPerDegC + kTempOffsetDegC;
     r.utime = stamper_.stamp(edge_utime, read_utime);
-    counters_.increment("samples");
+    counters_.increment(Icm42688Counter::samples);
     return r;
   } catch (const I2cError&) {
-    counters_.increment("transfer_failures");
+    counters_.increment(Icm42688Counter::transfer_failures);
     state_ = State::Reset;
     return std::nullopt;
   }
@@ -197,7 +192,7 @@ int Icm42688Driver::verifyConfiguration() {
     else if (mismatches > 0 && config_.fifo.enabled) flushFifo();
     return mismatches;
   } catch (const I2cError&) {
-    counters_.increment("transfer_failures");
+    counters_.increment(Icm42688Counter::transfer_failures);
     state_ = State::Reset;
     return 0;
   }

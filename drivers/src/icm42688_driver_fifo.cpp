@@ -20,28 +20,28 @@ std::vector<ImuReading> Icm42688Driver::readFifo(std::optional<std::int64_t> edg
     std::uint8_t status_count[3];
     device_.readBurst(reg::INT_STATUS, status_count, sizeof status_count);
     const std::int64_t read_utime = device_.clock().nowUtime();
-    counters_.increment("fifo_reads");
+    counters_.increment(Icm42688Counter::fifo_reads);
     const int count = status_count[1] << 8 | status_count[2];
     // FIFO_FULL: records were (or are about to be) lost, so the next one does not follow the last one read.
     // Whether the part raises it when the FIFO is full or only when a record is dropped the datasheet does
     // not make clear to us; either way the gap is honest only after a flush.
     if (status_count[0] & FIFO_FULL_INT) {
-      counters_.increment("fifo_overflow");
+      counters_.increment(Icm42688Counter::fifo_overflow);
       flushFifo();
       return out;
     }
     if (count > kFifoMaxRecords) {
-      counters_.increment("fifo_bad_count");  // not in records, or not a count at all
+      counters_.increment(Icm42688Counter::fifo_bad_count);  // not in records, or not a count at all
       flushFifo();
       return out;
     }
     if (count == 0) {
-      counters_.increment(edge_utime ? "fifo_empty_read" : "empty_polls");
+      counters_.increment(edge_utime ? Icm42688Counter::fifo_empty_read : Icm42688Counter::empty_polls);
       return out;
     }
     // Polled, wait for the watermark so that a fast poll still reads whole batches.
     if (!edge_utime && count < config_.fifo.watermark_samples && !(status_count[0] & FIFO_THS_INT)) {
-      counters_.increment("empty_polls");
+      counters_.increment(Icm42688Counter::empty_polls);
       return out;
     }
     std::vector<std::uint8_t> bytes(static_cast<std::size_t>(count) * kFifoPacketBytes);
@@ -53,7 +53,7 @@ std::vector<ImuReading> Icm42688Driver::readFifo(std::optional<std::int64_t> edg
     for (int k = 0; k < count; ++k) {
       const FifoPacket p = decodeFifoPacket(bytes.data() + static_cast<std::size_t>(k) * kFifoPacketBytes);
       if (p.kind == FifoPacket::Kind::Empty) {
-        counters_.increment("fifo_empty_read");  // the rest of the read is empty too
+        counters_.increment(Icm42688Counter::fifo_empty_read);  // the rest of the read is empty too
         break;
       }
       packets.push_back(p);
@@ -65,16 +65,16 @@ std::vector<ImuReading> Icm42688Driver::readFifo(std::optional<std::int64_t> edg
     const std::int64_t last = stamper_.pick(edge_utime, read_utime, stamper_.periodUs());
     int period_steps = 0;
     const std::vector<std::int64_t> times = fifoRecordTimes(last, odr_times, stamper_.periodUs(), &period_steps);
-    counters_.increment("fifo_period_stamps", static_cast<std::uint64_t>(period_steps));
+    counters_.increment(Icm42688Counter::fifo_period_stamps, static_cast<std::uint64_t>(period_steps));
 
     for (std::size_t k = 0; k < packets.size(); ++k) {
       const FifoPacket& p = packets[k];
       if (p.kind == FifoPacket::Kind::BadHeader) {
-        counters_.increment("fifo_bad_header");
+        counters_.increment(Icm42688Counter::fifo_bad_header);
         continue;
       }
       if (p.kind == FifoPacket::Kind::InvalidData) {
-        counters_.increment("fifo_invalid_data");
+        counters_.increment(Icm42688Counter::fifo_invalid_data);
         continue;
       }
       ImuReading r = toReading(p.accel, p.gyro);
@@ -85,12 +85,12 @@ std::vector<ImuReading> Icm42688Driver::readFifo(std::optional<std::int64_t> edg
         if (last_odr_time_ && *p.odr_time < *last_odr_time_) r.status |= status::kDeviceTimeWrapped;
         last_odr_time_ = p.odr_time;
       }
-      counters_.increment("samples");
+      counters_.increment(Icm42688Counter::samples);
       out.push_back(r);
     }
     return out;
   } catch (const I2cError&) {
-    counters_.increment("transfer_failures");
+    counters_.increment(Icm42688Counter::transfer_failures);
     state_ = State::Reset;
     return {};
   }

@@ -23,8 +23,6 @@ constexpr int kOrderEvidence = 3;
 
 J1939Imu::J1939Imu(const J1939ImuConfig& config)
     : config_(config),
-      counters_({"frames", "samples", "not_extended", "other_pgn", "other_source", "bad_length", "not_available",
-                 "error_indicator", "reserved_value", "merit_error", "merit_degraded", "unpaired", "timestamp_backwards"}),
       source_(config.source_address) {}
 
 bool J1939Imu::acceptValues(const Value* values, const FigureOfMerit* merits) {
@@ -32,48 +30,48 @@ bool J1939Imu::acceptValues(const Value* values, const FigureOfMerit* merits) {
   for (int i = 0; i < 3; ++i) {
     switch (values[i].state) {
       case ValueState::Valid: break;
-      case ValueState::NotAvailable: counters_.increment("not_available"); ok = false; break;
-      case ValueState::Error: counters_.increment("error_indicator"); ok = false; break;
-      case ValueState::Reserved: counters_.increment("reserved_value"); ok = false; break;
+      case ValueState::NotAvailable: counters_.increment(J1939Counter::not_available); ok = false; break;
+      case ValueState::Error: counters_.increment(J1939Counter::error_indicator); ok = false; break;
+      case ValueState::Reserved: counters_.increment(J1939Counter::reserved_value); ok = false; break;
     }
     // A figure of merit "not available" is what a sensor without that diagnostic sends: the value stands.
     if (merits[i] == FigureOfMerit::Error) {
-      counters_.increment("merit_error");
+      counters_.increment(J1939Counter::merit_error);
       ok = false;
     } else if (merits[i] == FigureOfMerit::Degraded) {
-      counters_.increment("merit_degraded");
+      counters_.increment(J1939Counter::merit_degraded);
     }
   }
   return ok;
 }
 
 std::optional<ImuReading> J1939Imu::add(const CanFrame& frame) {
-  counters_.increment("frames");
+  counters_.increment(J1939Counter::frames);
   if (!frame.extended || frame.remote) {
-    counters_.increment("not_extended");
+    counters_.increment(J1939Counter::not_extended);
     return std::nullopt;
   }
   const Identifier id = parseIdentifier(frame.id);
   if (id.pgn != kPgnAngularRate && id.pgn != kPgnAcceleration) {
-    counters_.increment("other_pgn");
+    counters_.increment(J1939Counter::other_pgn);
     return std::nullopt;
   }
   if (!source_) source_ = id.source;
   if (id.source != *source_) {
-    counters_.increment("other_source");
+    counters_.increment(J1939Counter::other_source);
     return std::nullopt;
   }
   if (frame.length != 8) {
-    counters_.increment("bad_length");
+    counters_.increment(J1939Counter::bad_length);
     return std::nullopt;
   }
   if (id.pgn == kPgnAngularRate) {
     dropOrphanedTrailer(Kind::Rate);
-    if (rate_) counters_.increment("unpaired");
+    if (rate_) counters_.increment(J1939Counter::unpaired);
     rate_ = PendingRate{frame.utime, arrivals_++, false, decodeAngularRate(frame.data)};
   } else {
     dropOrphanedTrailer(Kind::Accel);
-    if (accel_) counters_.increment("unpaired");
+    if (accel_) counters_.increment(J1939Counter::unpaired);
     accel_ = PendingAccel{frame.utime, arrivals_++, false, decodeAcceleration(frame.data)};
   }
   return pair();
@@ -83,7 +81,7 @@ void J1939Imu::dropOrphanedTrailer(Kind arriving) {
   if (!leader_ || arriving != *leader_) return;
   const bool trailer_waiting = arriving == Kind::Rate ? accel_ && !rate_ : rate_ && !accel_;
   if (!trailer_waiting) return;
-  counters_.increment("unpaired");
+  counters_.increment(J1939Counter::unpaired);
   if (arriving == Kind::Rate) accel_.reset();
   else rate_.reset();
   if (++orphans_in_a_row_ >= kOrderEvidence) {
@@ -105,7 +103,7 @@ void J1939Imu::learnOrder(Kind first) {
 std::optional<ImuReading> J1939Imu::pair() {
   if (!rate_ || !accel_) return std::nullopt;
   if (config_.pair_window_us < 0 || distanceUs(rate_->utime, accel_->utime) > static_cast<std::uint64_t>(config_.pair_window_us)) {
-    counters_.increment("unpaired");  // the older frame's partner never came
+    counters_.increment(J1939Counter::unpaired);  // the older frame's partner never came
     if (rate_->utime < accel_->utime) rate_.reset();
     else accel_.reset();
     // With the order not known, the frame kept may be the trailer of the pair just broken, and the next
@@ -114,7 +112,7 @@ std::optional<ImuReading> J1939Imu::pair() {
     return std::nullopt;
   }
   if (rate_->suspect || accel_->suspect) {
-    counters_.increment("unpaired");
+    counters_.increment(J1939Counter::unpaired);
     rate_.reset();
     accel_.reset();
     return std::nullopt;
@@ -140,7 +138,7 @@ std::optional<ImuReading> J1939Imu::pair() {
                                                                            : std::numeric_limits<std::int64_t>::min();
   }
   if (last_utime_ && utime <= *last_utime_) {
-    counters_.increment("timestamp_backwards");
+    counters_.increment(J1939Counter::timestamp_backwards);
     return std::nullopt;
   }
   last_utime_ = utime;
@@ -149,7 +147,7 @@ std::optional<ImuReading> J1939Imu::pair() {
   out.gyro = config_.gyro_axis_map.apply(Vec3(rates[0].si, rates[1].si, rates[2].si));
   out.accel = config_.accel_axis_map.apply(Vec3(accels[0].si, accels[1].si, accels[2].si));
   out.temperature_c = std::nan("");
-  counters_.increment("samples");
+  counters_.increment(J1939Counter::samples);
   return out;
 }
 

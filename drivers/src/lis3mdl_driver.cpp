@@ -42,10 +42,6 @@ std::int16_t littleEndian(const std::uint8_t* p) { return static_cast<std::int16
 
 Lis3mdlDriver::Lis3mdlDriver(I2cBus& bus, const Lis3mdlConfig& config, Clock& clock)
     : config_(config),
-      counters_({"samples", "bus_errors", "bus_retries", "transfer_failures", "resets", "who_am_i_mismatch",
-                 "reset_not_cleared", "configure_failed", "config_mismatch", "config_reapply_failed",
-                 "data_not_ready", "empty_polls", "data_overrun", "field_saturated", "timestamp_backwards",
-                 "stale_edge", "missed_samples"}),
       device_(bus, config.address, config.retry, clock, counters_),
       stamper_(config.odr_hz, counters_),
       table_(makeTable(config)),
@@ -55,18 +51,18 @@ void Lis3mdlDriver::resetAndConfigure() {
   ready_ = false;
   const std::uint8_t who = device_.readReg(reg::WHO_AM_I);
   if (who != kWhoAmIValue) {
-    counters_.increment("who_am_i_mismatch");
+    counters_.increment(Lis3mdlCounter::who_am_i_mismatch);
     throw DeviceError(device_.name() + ": WHO_AM_I (0x0F) reads " + hexByte(who) + ", expected " + hexByte(kWhoAmIValue) + " for a LIS3MDL");
   }
   device_.writeReg(reg::CTRL_REG2, SOFT_RST);
-  counters_.increment("resets");
+  counters_.increment(Lis3mdlCounter::resets);
   // Bounded: a plain register file (i2c-stub) keeps the bit; the configuration below overwrites it.
   bool cleared = false;
   for (int i = 0; i < config_.reset_poll_limit && !cleared; ++i) {
     device_.clock().sleepUs(kSoftResetWaitUs);
     cleared = (device_.readReg(reg::CTRL_REG2) & SOFT_RST) == 0;
   }
-  if (!cleared) counters_.increment("reset_not_cleared");  // the table clears SOFT_RST
+  if (!cleared) counters_.increment(Lis3mdlCounter::reset_not_cleared);  // the table clears SOFT_RST
   device_.applyTable(table_);
   stamper_.restart();
   ready_ = true;
@@ -81,10 +77,10 @@ std::optional<MagReading> Lis3mdlDriver::read(std::optional<std::int64_t> edge_u
     device_.readBurst(kBurstFirst | kAutoIncrement, b, kBurstLength);
     const std::int64_t read_utime = device_.clock().nowUtime();
     if ((b[0] & ZYXDA) == 0) {
-      counters_.increment(edge_utime ? "data_not_ready" : "empty_polls");
+      counters_.increment(edge_utime ? Lis3mdlCounter::data_not_ready : Lis3mdlCounter::empty_polls);
       return std::nullopt;
     }
-    if (b[0] & ZYXOR) counters_.increment("data_overrun");
+    if (b[0] & ZYXOR) counters_.increment(Lis3mdlCounter::data_overrun);
     MagReading r;
     Vec3 chip;
     for (int i = 0; i < 3; ++i) {
@@ -92,13 +88,13 @@ std::optional<MagReading> Lis3mdlDriver::read(std::optional<std::int64_t> edge_u
       r.saturated = r.saturated || v >= 32767 || v <= -32767;
       chip[i] = v * lsb_ut_;
     }
-    if (r.saturated) counters_.increment("field_saturated");
+    if (r.saturated) counters_.increment(Lis3mdlCounter::field_saturated);
     r.field = config_.axis_map.apply(chip);
     r.utime = stamper_.stamp(edge_utime, read_utime);
-    counters_.increment("samples");
+    counters_.increment(Lis3mdlCounter::samples);
     return r;
   } catch (const I2cError&) {
-    counters_.increment("transfer_failures");
+    counters_.increment(Lis3mdlCounter::transfer_failures);
     ready_ = false;
     return std::nullopt;
   }
@@ -112,7 +108,7 @@ int Lis3mdlDriver::verifyConfiguration() {
     if (!repaired) ready_ = false;
     return mismatches;
   } catch (const I2cError&) {
-    counters_.increment("transfer_failures");
+    counters_.increment(Lis3mdlCounter::transfer_failures);
     ready_ = false;
     return 0;
   }

@@ -7,19 +7,19 @@
 namespace imucal::drivers {
 
 RegisterDevice::RegisterDevice(I2cBus& bus, std::uint8_t address, const RetryPolicy& retry, Clock& clock,
-                               Counters& counters, std::optional<std::uint8_t> bank_register)
+                               const RegisterDeviceCounters& counters, std::optional<std::uint8_t> bank_register)
     : bus_(bus), address_(address), retry_(retry), clock_(clock), counters_(counters), bank_register_(bank_register) {}
 
 std::uint8_t RegisterDevice::readReg(std::uint8_t reg) {
-  return withRetry(retry_, clock_, counters_, [&] { return bus_.readRegister(address_, reg); });
+  return withRetry(retry_, clock_, counters_.retry, [&] { return bus_.readRegister(address_, reg); });
 }
 
 void RegisterDevice::writeReg(std::uint8_t reg, std::uint8_t value) {
-  withRetry(retry_, clock_, counters_, [&] { bus_.writeRegister(address_, reg, value); });
+  withRetry(retry_, clock_, counters_.retry, [&] { bus_.writeRegister(address_, reg, value); });
 }
 
 void RegisterDevice::readBurst(std::uint8_t reg, std::uint8_t* buffer, std::size_t n) {
-  withRetry(retry_, clock_, counters_, [&] { bus_.readRegisters(address_, reg, buffer, n); });
+  withRetry(retry_, clock_, counters_.retry, [&] { bus_.readRegisters(address_, reg, buffer, n); });
 }
 
 void RegisterDevice::readStream(std::uint8_t reg, std::uint8_t* buffer, std::size_t n, std::size_t unit) {
@@ -44,7 +44,7 @@ void RegisterDevice::applyTable(const RegisterTable& table, const std::function<
     selectBank(s.bank);
     const std::uint8_t value = readReg(s.reg);
     if (!s.holds(value)) {
-      counters_.increment("configure_failed");
+      counters_.configure_failed.increment();
       throw I2cError(name() + ": register " + hexByte(s.reg) + " reads " + hexByte(value) + " after configuration, expected " +
                          hexByte(s.apply(value)),
                      0);
@@ -61,10 +61,10 @@ int RegisterDevice::verifyTable(const RegisterTable& table, bool* repaired) {
     const std::uint8_t value = readReg(s.reg);
     if (s.holds(value)) continue;
     ++mismatches;
-    counters_.increment("config_mismatch");
+    counters_.config_mismatch.increment();
     writeReg(s.reg, s.apply(value));
     if (!s.holds(readReg(s.reg))) {
-      counters_.increment("config_reapply_failed");
+      counters_.config_reapply_failed.increment();
       *repaired = false;
     }
   }
@@ -78,7 +78,7 @@ void RegisterDevice::startup(int attempts, const std::string& part, const std::f
       sequence();
       return;
     } catch (const I2cError& e) {
-      counters_.increment("transfer_failures");
+      counters_.transfer_failures.increment();
       last_error = e.what();
       clock_.sleepUs(retry_.backoffUs(attempt + 2));
     }

@@ -4,7 +4,7 @@
 
 namespace imucal::drivers {
 
-SampleStamper::SampleStamper(double rate_hz, Counters& counters)
+SampleStamper::SampleStamper(double rate_hz, const SampleStamperCounters& counters)
     : period_us_(static_cast<std::int64_t>(std::llround(1e6 / rate_hz))), counters_(counters) {}
 
 std::int64_t SampleStamper::stamp(std::optional<std::int64_t> edge_utime, std::int64_t read_utime) {
@@ -15,7 +15,7 @@ std::int64_t SampleStamper::stamp(std::optional<std::int64_t> edge_utime, std::i
 std::int64_t SampleStamper::pick(std::optional<std::int64_t> edge_utime, std::int64_t read_utime, std::int64_t tolerance_us) {
   if (!edge_utime) return read_utime;
   if (read_utime - *edge_utime > tolerance_us) {
-    counters_.increment("stale_edge");
+    counters_.stale_edge.increment();
     return read_utime;
   }
   return *edge_utime;
@@ -25,11 +25,11 @@ std::int64_t SampleStamper::check(std::int64_t t) {
   const std::int64_t tolerance = period_us_ + period_us_ / 2;
   if (last_) {
     if (t <= *last_) {
-      counters_.increment("timestamp_backwards");
+      counters_.timestamp_backwards.increment();
       return t;
     }
     const std::int64_t gap = t - *last_;
-    if (gap > tolerance) counters_.increment("missed_samples", static_cast<std::uint64_t>(std::llround(static_cast<double>(gap) / period_us_) - 1));
+    if (gap > tolerance) counters_.missed_samples.increment(static_cast<std::uint64_t>(std::llround(static_cast<double>(gap) / period_us_) - 1));
   }
   last_ = t;
   return t;

@@ -48,7 +48,7 @@ TEST(DriversIcm42688, RecoversTheTrueMotionWithinOneLsb) {
       // Rounding to the nearest count: half an LSB, plus float noise.
       EXPECT_LE(max_accel_err, 0.5 * driver.accelLsb() * (1 + 1e-9)) << accel_g << " g";
       EXPECT_LE(max_gyro_err, 0.5 * driver.gyroLsb() * (1 + 1e-9)) << gyro_dps << " deg/s";
-      EXPECT_EQ(driver.counters().get("missed_samples"), static_cast<std::uint64_t>(checked - 1) * 5);
+      EXPECT_EQ(driver.counters().get(Icm42688Counter::missed_samples), static_cast<std::uint64_t>(checked - 1) * 5);
     }
   }
 }
@@ -75,7 +75,7 @@ TEST(DriversIcm42688, ConfiguredScaleAndRateReachTheRegisters) {
   }
   EXPECT_EQ(samples, 20);
   EXPECT_EQ(empty, 20);
-  EXPECT_EQ(driver.counters().get("empty_polls"), 20u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::empty_polls), 20u);
 }
 
 TEST(DriversIcm42688, ShortInterruptPulsesAtFourKilohertzAndAbove) {
@@ -100,7 +100,7 @@ TEST(DriversIcm42688, SaturatesAtFullScaleAndFlagsIt) {
   EXPECT_TRUE(r->status & status::kGyroSaturated);
   EXPECT_FALSE(r->status & status::kAccelSaturated);
   EXPECT_NEAR(std::abs(r->gyro.z()), 15.625 * units::deg_per_s, driver.gyroLsb());
-  EXPECT_EQ(driver.counters().get("gyro_saturated"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::gyro_saturated), 1u);
 }
 
 TEST(DriversIcm42688, ReappliesAConfigurationChangedBehindItsBack) {
@@ -111,10 +111,10 @@ TEST(DriversIcm42688, ReappliesAConfigurationChangedBehindItsBack) {
   rig.chip.poke(0, reg::GYRO_CONFIG0, icm42688::kGyroConfig0Reset);  // 2000 deg/s, 1 kHz, as after a brown-out
   rig.chip.poke(0, reg::REG_BANK_SEL, 3);                            // and another program left bank 3 selected
   EXPECT_EQ(driver.verifyConfiguration(), 1);
-  EXPECT_EQ(driver.counters().get("config_mismatch"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::config_mismatch), 1u);
   EXPECT_EQ(rig.chip.peek(0, reg::GYRO_CONFIG0), (3 << 5) | 0x8);
   EXPECT_EQ(driver.verifyConfiguration(), 0);
-  EXPECT_EQ(driver.counters().get("config_mismatch"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::config_mismatch), 1u);
 }
 
 TEST(DriversIcm42688, WrongWhoAmIIsAClearError) {
@@ -127,7 +127,7 @@ TEST(DriversIcm42688, WrongWhoAmIIsAClearError) {
   } catch (const DeviceError& e) {
     EXPECT_STREQ(e.what(), "emulated-i2c:0x68: WHO_AM_I (0x75) reads 0x12, expected 0x47 for an ICM-42688-P");
   }
-  EXPECT_EQ(driver.counters().get("who_am_i_mismatch"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::who_am_i_mismatch), 1u);
   EXPECT_EQ(rig.chip.softResets(), 0) << "a part that is not ours must not be reset";
 }
 
@@ -153,20 +153,20 @@ TEST(DriversIcm42688, BusErrorsAreRetriedWithBackoffCountedAndRecovered) {
   rig.bus.failNextTransfers(2, EIO);
   auto r = driver.read(rig.nextTick());
   ASSERT_TRUE(r) << "two failures are within the four attempts";
-  EXPECT_EQ(driver.counters().get("bus_errors"), 2u);
-  EXPECT_EQ(driver.counters().get("bus_retries"), 2u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::bus_errors), 2u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::bus_retries), 2u);
   EXPECT_EQ(rig.clock.sleeps, (std::vector<std::int64_t>{1000, 2000}));
 
   // All four attempts fail: no sample, the device goes back to reset, and the next read brings it back.
   rig.bus.failNextTransfers(4, EREMOTEIO);
   EXPECT_FALSE(driver.read(rig.nextTick()));
   EXPECT_EQ(driver.state(), Icm42688Driver::State::Reset);
-  EXPECT_EQ(driver.counters().get("transfer_failures"), 1u);
-  EXPECT_EQ(driver.counters().get("bus_errors"), 6u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::transfer_failures), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::bus_errors), 6u);
   r = driver.read(rig.nextTick());
   ASSERT_TRUE(r);
   EXPECT_EQ(driver.state(), Icm42688Driver::State::Read);
-  EXPECT_EQ(driver.counters().get("resets"), 2u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::resets), 2u);
   EXPECT_EQ(rig.chip.softResets(), 2);
 }
 
@@ -197,7 +197,7 @@ TEST(DriversIcm42688, AResetBitThatNeverClearsIsWaitedOutNotSpunOn) {
   Icm42688Driver driver(bus, rig.cfg, rig.clock);
   driver.start();
   EXPECT_EQ(driver.state(), Icm42688Driver::State::Read);
-  EXPECT_EQ(driver.counters().get("reset_not_cleared"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::reset_not_cleared), 1u);
   EXPECT_TRUE(driver.read(rig.nextTick()));
 }
 
@@ -253,12 +253,12 @@ TEST(DriversIcm42688, TimeStampsComeFromTheDataReadyEdgeWhenThereIsOne) {
   r = driver.read(late);
   ASSERT_TRUE(r);
   EXPECT_EQ(r->utime, rig.clock.nowUtime());
-  EXPECT_EQ(driver.counters().get("stale_edge"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::stale_edge), 1u);
   // An edge not after the previous sample's time.
   rig.nextTick();
   r = driver.read(late - 1000);
   ASSERT_TRUE(r);
-  EXPECT_EQ(driver.counters().get("stale_edge"), 2u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::stale_edge), 2u);
 }
 
 }  // namespace

@@ -138,7 +138,7 @@ TEST(DriversIcm42688Fifo, ConfiguresStreamToFifoWithTheWatermarkOnInt1) {
   EXPECT_EQ(chip.peek(0, reg::INTF_CONFIG0) & 0x70, 0x70);  // count in records, big-endian count and data
   EXPECT_EQ(chip.peek(0, reg::INT_SOURCE0), icm42688::FIFO_THS_INT1_EN) << "the watermark instead of data ready";
   EXPECT_EQ(chip.peek(0, reg::PWR_MGMT0), 0x0F);
-  EXPECT_EQ(b.driver.counters().get("fifo_flushes"), 1u) << "the records of the start-up wait are flushed";
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::fifo_flushes), 1u) << "the records of the start-up wait are flushed";
   // Register mode keeps data ready on INT1 and leaves the FIFO off.
   Icm42688Rig plain;
   Icm42688Driver d(plain.bus, plain.cfg, plain.clock);
@@ -185,13 +185,13 @@ TEST(DriversIcm42688Fifo, AWatermarkReadReturnsTheEmulatedSamplesAsTheRegistersG
     EXPECT_LE(max_truth_err_accel, 0.5 * b.driver.accelLsb() * (1 + 1e-9));
     EXPECT_LE(max_truth_err_gyro, 0.5 * b.driver.gyroLsb() * (1 + 1e-9));
     EXPECT_GT(max_truth_err_gyro, 0.0) << "mid-turn, the rate is not a whole number of counts";
-    const Counters& c = b.driver.counters();
-    EXPECT_EQ(c.get("samples"), 300u);
-    EXPECT_EQ(c.get("fifo_reads"), 30u);
-    EXPECT_EQ(c.get("missed_samples"), 0u);
-    EXPECT_EQ(c.get("timestamp_backwards"), 0u);
-    EXPECT_EQ(c.get("fifo_period_stamps"), 0u) << "every step came from the device's stamps";
-    EXPECT_EQ(c.get("stale_edge"), 0u);
+    const Counters<Icm42688Counter>& c = b.driver.counters();
+    EXPECT_EQ(c.get(Icm42688Counter::samples), 300u);
+    EXPECT_EQ(c.get(Icm42688Counter::fifo_reads), 30u);
+    EXPECT_EQ(c.get(Icm42688Counter::missed_samples), 0u);
+    EXPECT_EQ(c.get(Icm42688Counter::timestamp_backwards), 0u);
+    EXPECT_EQ(c.get(Icm42688Counter::fifo_period_stamps), 0u) << "every step came from the device's stamps";
+    EXPECT_EQ(c.get(Icm42688Counter::stale_edge), 0u);
   }
 }
 
@@ -214,7 +214,7 @@ TEST(DriversIcm42688Fifo, ChunkedReadsOverA32ByteSmbusAdapterGiveTheSameSamples)
       EXPECT_EQ(a[k].device_time_us, b[k].device_time_us);
     }
   }
-  EXPECT_EQ(smbus.driver.counters().get("transfer_failures"), 0u);
+  EXPECT_EQ(smbus.driver.counters().get(Icm42688Counter::transfer_failures), 0u);
   std::uint8_t unchunked[160];
   EXPECT_THROW(smbus.rig.bus.readRegisters(0x68, reg::FIFO_DATA, unchunked, sizeof unchunked), I2cError)
       << "the adapter refuses what does not fit a transfer, so the chunking above is what made it work";
@@ -232,8 +232,8 @@ TEST(DriversIcm42688Fifo, AnOverflowIsCountedAndRecoveredByAFlush) {
   // The host stops reading for 2 s: 200 records for a FIFO of 128.
   b.rig.clock.advanceUs(2'000'000);
   EXPECT_TRUE(b.driver.readFifo(b.rig.clock.nowUtime()).empty());
-  EXPECT_EQ(b.driver.counters().get("fifo_overflow"), 1u);
-  EXPECT_EQ(b.driver.counters().get("fifo_flushes"), 2u);  // start-up, overflow
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::fifo_overflow), 1u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::fifo_flushes), 2u);  // start-up, overflow
   EXPECT_EQ(b.rig.chip.fifo().overflows(), 200 - 128);
   EXPECT_EQ(b.rig.chip.fifo().records(), 0u);
   // Reading resumes with the records after the flush, on their ticks.
@@ -246,13 +246,13 @@ TEST(DriversIcm42688Fifo, AnOverflowIsCountedAndRecoveredByAFlush) {
   EXPECT_EQ(rs.back().utime, edge);
   const sim::TruthState s = sim::Motion(sim::paperMotion(), EarthModel{}).at(static_cast<double>(first_tick) / 100.0);
   EXPECT_LE((rs.front().gyro - s.omega_ib_b).lpNorm<Eigen::Infinity>(), 0.5 * b.driver.gyroLsb() * (1 + 1e-9));
-  EXPECT_EQ(b.driver.counters().get("missed_samples"), 0u) << "a flush starts a new run of records";
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::missed_samples), 0u) << "a flush starts a new run of records";
 
   // An hour without a read at 8 kHz (28.8 million records) neither hangs nor crashes.
   FifoBench fast(fifoConfig(64, 8000.0));
   fast.rig.clock.advanceUs(3'600'000'000LL);
   EXPECT_TRUE(fast.driver.readFifo(fast.rig.clock.nowUtime()).empty());
-  EXPECT_EQ(fast.driver.counters().get("fifo_overflow"), 1u);
+  EXPECT_EQ(fast.driver.counters().get(Icm42688Counter::fifo_overflow), 1u);
   EXPECT_GT(fast.rig.chip.fifo().overflows(), 28'799'000);
   fast.restartTicks();
   EXPECT_EQ(fast.driver.readFifo(fast.watermarkEdge()).size(), 64u);
@@ -270,13 +270,13 @@ TEST(DriversIcm42688Fifo, ACorruptedHeaderOrInvalidRecordIsCountedAndSkipped) {
   // The cleared INT_STATUS does not matter: an edge is read whatever the status says.
   const auto rs = b.driver.readFifo(edge);
   ASSERT_EQ(rs.size(), 8u);
-  EXPECT_EQ(b.driver.counters().get("fifo_bad_header"), 1u);
-  EXPECT_EQ(b.driver.counters().get("fifo_invalid_data"), 1u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::fifo_bad_header), 1u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::fifo_invalid_data), 1u);
   // The skipped records keep their ticks: the others are still on theirs.
   const std::vector<int> ticks = {0, 1, 2, 4, 5, 7, 8, 9};
   for (std::size_t k = 0; k < rs.size(); ++k) EXPECT_EQ(rs[k].utime, b.rig.tickUtime(first_tick + ticks[k])) << k;
   // Steps next to the record without a usable stamp fell back to the period (both sides of records 3 and 6).
-  EXPECT_EQ(b.driver.counters().get("fifo_period_stamps"), 4u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::fifo_period_stamps), 4u);
 }
 
 TEST(DriversIcm42688Fifo, AChangedFifoRegisterIsDetectedAndReapplied) {
@@ -287,11 +287,11 @@ TEST(DriversIcm42688Fifo, AChangedFifoRegisterIsDetectedAndReapplied) {
   b.rig.chip.poke(0, reg::FIFO_CONFIG1, 0x13);                     // HIRES (packet 4), no temperature, no stamp
   b.rig.chip.poke(0, reg::INT_SOURCE0, icm42688::UI_DRDY_INT1_EN);  // data ready back on INT1
   EXPECT_EQ(b.driver.verifyConfiguration(), 3);
-  EXPECT_EQ(b.driver.counters().get("config_mismatch"), 3u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::config_mismatch), 3u);
   EXPECT_EQ(b.rig.chip.peek(0, reg::FIFO_CONFIG), 0x40);
   EXPECT_EQ(b.rig.chip.peek(0, reg::FIFO_CONFIG1), 0x2F);
   EXPECT_EQ(b.rig.chip.peek(0, reg::INT_SOURCE0), icm42688::FIFO_THS_INT1_EN);
-  EXPECT_EQ(b.driver.counters().get("fifo_flushes"), 2u) << "whatever the FIFO held is not trusted";
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::fifo_flushes), 2u) << "whatever the FIFO held is not trusted";
   b.rig.chip.poke(0, reg::FIFO_CONFIG2, 50);  // another watermark
   EXPECT_EQ(b.driver.verifyConfiguration(), 1);
   EXPECT_EQ(b.rig.chip.peek(0, reg::FIFO_CONFIG2), 10);
@@ -301,7 +301,7 @@ TEST(DriversIcm42688Fifo, AChangedFifoRegisterIsDetectedAndReapplied) {
   const auto rs = b.driver.readFifo(edge);
   ASSERT_EQ(rs.size(), 10u);
   EXPECT_EQ(rs.back().utime, edge);
-  EXPECT_EQ(b.driver.counters().get("fifo_bad_header"), 0u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::fifo_bad_header), 0u);
 }
 
 TEST(DriversIcm42688Fifo, PolledItWaitsForTheWatermarkAndStampsWithTheReadTime) {
@@ -309,7 +309,7 @@ TEST(DriversIcm42688Fifo, PolledItWaitsForTheWatermarkAndStampsWithTheReadTime) 
   EXPECT_TRUE(b.driver.readFifo(std::nullopt).empty());  // nothing yet
   b.rig.clock.advanceUs(b.rig.tickUtime(b.next_tick + 4) + 50 - b.rig.clock.nowUtime());
   EXPECT_TRUE(b.driver.readFifo(std::nullopt).empty());  // 5 of 10
-  EXPECT_EQ(b.driver.counters().get("empty_polls"), 2u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::empty_polls), 2u);
   b.watermarkEdge();
   b.rig.clock.advanceUs(3000);  // polled 3 ms after the tick
   const auto rs = b.driver.readFifo(std::nullopt);
@@ -322,7 +322,7 @@ TEST(DriversIcm42688Fifo, PolledItWaitsForTheWatermarkAndStampsWithTheReadTime) 
   const auto more = b.driver.readFifo(late);
   ASSERT_EQ(more.size(), 11u) << "the record of the tick after the edge came too";
   EXPECT_EQ(more.back().utime, b.rig.clock.nowUtime());
-  EXPECT_EQ(b.driver.counters().get("stale_edge"), 1u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::stale_edge), 1u);
 }
 
 TEST(DriversIcm42688Fifo, ABusFailureResetsTheDeviceAndReadingResumes) {
@@ -331,7 +331,7 @@ TEST(DriversIcm42688Fifo, ABusFailureResetsTheDeviceAndReadingResumes) {
   b.rig.bus.failNextTransfers(4, EIO);
   EXPECT_TRUE(b.driver.readFifo(edge).empty());
   EXPECT_EQ(b.driver.state(), Icm42688Driver::State::Reset);
-  EXPECT_EQ(b.driver.counters().get("transfer_failures"), 1u);
+  EXPECT_EQ(b.driver.counters().get(Icm42688Counter::transfer_failures), 1u);
   EXPECT_TRUE(b.driver.readFifo(std::nullopt).empty());  // reset, configured, flushed: nothing yet
   EXPECT_EQ(b.driver.state(), Icm42688Driver::State::Read);
   EXPECT_EQ(b.rig.chip.softResets(), 2);
@@ -419,8 +419,8 @@ TEST(DriversIcm42688Fifo, HandWrittenRecordsComeOutInSiUnitsWithTheirFaultsCount
   // The bad record takes the edge's time, B one nominal period before it, A B's 10100 us before that.
   EXPECT_EQ(rs[1].utime, edge - 10'000);
   EXPECT_EQ(rs[0].utime, edge - 20'100);
-  EXPECT_EQ(driver.counters().get("fifo_bad_header"), 1u);
-  EXPECT_EQ(driver.counters().get("fifo_period_stamps"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::fifo_bad_header), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::fifo_period_stamps), 1u);
 
   // The count said 2 but the FIFO had 1 record: the rest reads as empty, and the one record is the newest.
   const std::int64_t edge2 = edge + 30'000;
@@ -429,22 +429,22 @@ TEST(DriversIcm42688Fifo, HandWrittenRecordsComeOutInSiUnitsWithTheirFaultsCount
   rs = driver.readFifo(edge2);
   ASSERT_EQ(rs.size(), 1u);
   EXPECT_EQ(rs[0].utime, edge2);
-  EXPECT_EQ(driver.counters().get("fifo_empty_read"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::fifo_empty_read), 1u);
   // An edge with nothing in the FIFO.
   fifo.load(0, {});
   EXPECT_TRUE(driver.readFifo(rig.clock.nowUtime()).empty());
-  EXPECT_EQ(driver.counters().get("fifo_empty_read"), 2u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::fifo_empty_read), 2u);
   // A count beyond the 128 records the FIFO holds (a byte count, or noise): nothing read, FIFO flushed.
-  const std::uint64_t flushes = driver.counters().get("fifo_flushes");
+  const std::uint64_t flushes = driver.counters().get(Icm42688Counter::fifo_flushes);
   fifo.load(512, {});
   EXPECT_TRUE(driver.readFifo(rig.clock.nowUtime()).empty());
-  EXPECT_EQ(driver.counters().get("fifo_bad_count"), 1u);
-  EXPECT_EQ(driver.counters().get("fifo_flushes"), flushes + 1);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::fifo_bad_count), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::fifo_flushes), flushes + 1);
   EXPECT_EQ(fifo.next, 0u) << "no FIFO byte was read";
   // FIFO_FULL: records were lost.
   fifo.load(3, concat({kPacket, kPacket, kPacket}), icm42688::FIFO_THS_INT | icm42688::FIFO_FULL_INT);
   EXPECT_TRUE(driver.readFifo(rig.clock.nowUtime()).empty());
-  EXPECT_EQ(driver.counters().get("fifo_overflow"), 1u);
+  EXPECT_EQ(driver.counters().get(Icm42688Counter::fifo_overflow), 1u);
   // The 16-bit device time wrapping between records is flagged on the record after the wrap.
   rig.clock.advanceUs(100'000);
   fifo.load(2, concat({packetWith(0x68, 65000), packetWith(0x68, 9464)}));

@@ -119,7 +119,7 @@ TEST(DriversJ1939, PairsRateAndAccelerationIntoOneFrdSample) {
     EXPECT_NEAR(r->accel[i], f[i], 0.005 + 1e-9) << i;
   }
   EXPECT_TRUE(std::isnan(r->temperature_c));
-  EXPECT_EQ(imu.counters().get("samples"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::samples), 1u);
 }
 
 // Found by fuzz_j1939: the pairing took the difference of two stamps, which overflowed (and then paired
@@ -132,8 +132,8 @@ TEST(DriversJ1939, StampsAtTheEndsOfTheRangeAreNotPaired) {
   const auto accs = encodeAcceleration(0.0, 0.0, 9.81, kGood);
   EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, ari, kMin + 10)));
   EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0xE2, accs, kMax - 10)));
-  EXPECT_EQ(imu.counters().get("unpaired"), 1u);
-  EXPECT_EQ(imu.counters().get("samples"), 0u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::unpaired), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::samples), 0u);
 }
 
 // The latency is subtracted without going below the smallest stamp.
@@ -155,38 +155,38 @@ TEST(DriversJ1939, SourceFilterWrongPgnAndUnusableValues) {
   const auto accs = encodeAcceleration(0.0, 0.0, 9.8, kGood);
   EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0x17, ari, 0)));
   EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0x17, accs, 10)));
-  EXPECT_EQ(imu.counters().get("other_source"), 2u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::other_source), 2u);
   EXPECT_FALSE(imu.add(frame(65265, 0xE2, accs, 20)));  // CCVS, vehicle speed: not ours
-  EXPECT_EQ(imu.counters().get("other_pgn"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::other_pgn), 1u);
 
   // Not available on one axis: the pair is dropped, nothing is published as a number.
   EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, encodeAngularRate(0.1, std::nan(""), 0.3, kGood, std::nullopt), 1000)));
   EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0xE2, accs, 1100)));
-  EXPECT_EQ(imu.counters().get("not_available"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::not_available), 1u);
   // Error indicator.
   auto bad = accs;
   bad[4] = 0x00;
   bad[5] = 0xFE;
   EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, ari, 2000)));
   EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0xE2, bad, 2100)));
-  EXPECT_EQ(imu.counters().get("error_indicator"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::error_indicator), 1u);
   // A figure of merit "error" with a valid number: not used; "degraded": used, counted.
   EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, encodeAngularRate(0.1, 0.2, 0.3, {FigureOfMerit::Error, FigureOfMerit::FullyFunctional, FigureOfMerit::FullyFunctional}, std::nullopt), 3000)));
   EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0xE2, accs, 3100)));
-  EXPECT_EQ(imu.counters().get("merit_error"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::merit_error), 1u);
   EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, encodeAngularRate(0.1, 0.2, 0.3, {FigureOfMerit::Degraded, FigureOfMerit::FullyFunctional, FigureOfMerit::FullyFunctional}, std::nullopt), 4000)));
   EXPECT_TRUE(imu.add(frame(kPgnAcceleration, 0xE2, accs, 4100)));
-  EXPECT_EQ(imu.counters().get("merit_degraded"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::merit_degraded), 1u);
   // A short frame.
   CanFrame s = frame(kPgnAngularRate, 0xE2, ari, 5000);
   s.length = 6;
   EXPECT_FALSE(imu.add(s));
-  EXPECT_EQ(imu.counters().get("bad_length"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::bad_length), 1u);
   // Frames too far apart do not pair.
   EXPECT_FALSE(imu.add(frame(kPgnAngularRate, 0xE2, ari, 10'000)));
   EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0xE2, accs, 30'000)));
-  EXPECT_EQ(imu.counters().get("unpaired"), 1u);
-  EXPECT_EQ(imu.counters().get("samples"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::unpaired), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::samples), 1u);
 }
 
 // Cycle k of a 100 Hz sensor whose yaw rate is k/100 rad/s and vertical acceleration 9 + k/10 m/s^2, so a
@@ -222,8 +222,8 @@ TEST(DriversJ1939, APairSplitWiderThanTheWindowIsNotCompletedByTheNextCycle) {
   ASSERT_TRUE(s);
   EXPECT_EQ(rateCycle(*s), 4);
   EXPECT_EQ(accelCycle(*s), 4) << "the late acceleration of cycle 3 must not complete cycle 4's rate";
-  EXPECT_EQ(imu.counters().get("unpaired"), 2u) << "cycle 3's rate (window) and its acceleration (orphaned)";
-  EXPECT_EQ(imu.counters().get("samples"), 4u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::unpaired), 2u) << "cycle 3's rate (window) and its acceleration (orphaned)";
+  EXPECT_EQ(imu.counters().get(J1939Counter::samples), 4u);
 }
 
 // A sensor that sends the acceleration first is learned as such; when its order changes, a few cycles are
@@ -267,7 +267,7 @@ TEST(DriversJ1939, WithoutAConfiguredSourceTheFirstSourceIsKept) {
   EXPECT_FALSE(imu.add(frame(kPgnAcceleration, 0x44, accs, 100)));
   EXPECT_TRUE(imu.add(frame(kPgnAcceleration, 0x33, accs, 200)));
   EXPECT_EQ(*imu.source(), 0x33);
-  EXPECT_EQ(imu.counters().get("other_source"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::other_source), 1u);
 }
 
 TEST(DriversCandump, LogAndAsciiFormats) {
@@ -331,7 +331,7 @@ TEST(DriversCandump, BadLinesAreReportedWithTheirLineNumbers) {
   // The short frame reaches the decoder and is counted there, not published; lines 1 and 10 pair.
   J1939Imu imu(J1939ImuConfig{});
   EXPECT_EQ(decodeAll(imu, log), 1);
-  EXPECT_EQ(imu.counters().get("bad_length"), 1u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::bad_length), 1u);
 }
 
 TEST(DriversCandump, TimeStampBeyondAnyClockIsABadLineNotAnOverflow) {
@@ -347,7 +347,7 @@ TEST(DriversCandump, TimeStampBeyondAnyClockIsABadLineNotAnOverflow) {
   EXPECT_EQ(log.frames[1].frame.utime, 1'700'000'000'011'000);
   J1939Imu imu(J1939ImuConfig{});
   EXPECT_EQ(decodeAll(imu, log), 1);
-  EXPECT_EQ(imu.counters().get("timestamp_backwards"), 0u);
+  EXPECT_EQ(imu.counters().get(J1939Counter::timestamp_backwards), 0u);
 }
 
 TEST(DriversCandump, StandardIdentifierBeyond11BitsIsRefused) {

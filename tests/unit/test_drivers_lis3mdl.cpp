@@ -125,10 +125,10 @@ TEST(DriversLis3mdl, SoftResetRestoresDefaultsAndPowerDownStopsData) {
   EXPECT_EQ(rig.chip.peek(reg::CTRL_REG3), lis3mdl::kCtrlReg3Reset);
   // Powered down: no new data ...
   EXPECT_FALSE(driver.read(rig.nextTick()));
-  EXPECT_EQ(driver.counters().get("data_not_ready"), 1u);
+  EXPECT_EQ(driver.counters().get(Lis3mdlCounter::data_not_ready), 1u);
   // ... until the read-back finds the changed registers and re-applies them.
   EXPECT_EQ(driver.verifyConfiguration(), 4);  // CTRL_REG1, 3, 4, 5 (CTRL_REG2's reset value is 4 gauss, as configured)
-  EXPECT_EQ(driver.counters().get("config_mismatch"), 4u);
+  EXPECT_EQ(driver.counters().get(Lis3mdlCounter::config_mismatch), 4u);
   EXPECT_TRUE(driver.read(rig.nextTick()));
 }
 
@@ -138,7 +138,7 @@ TEST(DriversLis3mdl, ReappliesAFullScaleChangedBehindItsBack) {
   driver.start();
   rig.chip.poke(reg::CTRL_REG2, 3 << 5);  // 16 gauss
   EXPECT_EQ(driver.verifyConfiguration(), 1);
-  EXPECT_EQ(driver.counters().get("config_mismatch"), 1u);
+  EXPECT_EQ(driver.counters().get(Lis3mdlCounter::config_mismatch), 1u);
   EXPECT_EQ(rig.chip.peek(reg::CTRL_REG2), 0x00);
 }
 
@@ -164,7 +164,7 @@ TEST(DriversLis3mdl, SaturatesAtFullScale) {
   ASSERT_TRUE(r);
   EXPECT_TRUE(r->saturated);
   EXPECT_NEAR(r->field.x(), 32767 * driver.lsbMicrotesla(), 1e-9);
-  EXPECT_EQ(driver.counters().get("field_saturated"), 1u);
+  EXPECT_EQ(driver.counters().get(Lis3mdlCounter::field_saturated), 1u);
 }
 
 // Iron distortion the emulated part sees, and the configured correction that undoes it.

@@ -27,6 +27,42 @@
 
 namespace imucal::drivers {
 
+// The driver's failure counters; the table's order is its log line's (summary()).
+enum class Icm42688Counter {
+  samples, bus_errors, bus_retries, transfer_failures, resets, who_am_i_mismatch, reset_not_cleared,
+  configure_failed, config_mismatch, config_reapply_failed, data_not_ready, empty_polls, invalid_data,
+  accel_saturated, gyro_saturated, timestamp_backwards, stale_edge, missed_samples, fifo_reads, fifo_overflow,
+  fifo_bad_count, fifo_bad_header, fifo_empty_read, fifo_invalid_data, fifo_flushes, fifo_period_stamps
+};
+inline constexpr CounterName<Icm42688Counter> kIcm42688Counters[] = {
+    {Icm42688Counter::samples, "samples"},
+    {Icm42688Counter::bus_errors, "bus_errors"},
+    {Icm42688Counter::bus_retries, "bus_retries"},
+    {Icm42688Counter::transfer_failures, "transfer_failures"},
+    {Icm42688Counter::resets, "resets"},
+    {Icm42688Counter::who_am_i_mismatch, "who_am_i_mismatch"},
+    {Icm42688Counter::reset_not_cleared, "reset_not_cleared"},
+    {Icm42688Counter::configure_failed, "configure_failed"},
+    {Icm42688Counter::config_mismatch, "config_mismatch"},
+    {Icm42688Counter::config_reapply_failed, "config_reapply_failed"},
+    {Icm42688Counter::data_not_ready, "data_not_ready"},
+    {Icm42688Counter::empty_polls, "empty_polls"},
+    {Icm42688Counter::invalid_data, "invalid_data"},
+    {Icm42688Counter::accel_saturated, "accel_saturated"},
+    {Icm42688Counter::gyro_saturated, "gyro_saturated"},
+    {Icm42688Counter::timestamp_backwards, "timestamp_backwards"},
+    {Icm42688Counter::stale_edge, "stale_edge"},
+    {Icm42688Counter::missed_samples, "missed_samples"},
+    {Icm42688Counter::fifo_reads, "fifo_reads"},
+    {Icm42688Counter::fifo_overflow, "fifo_overflow"},
+    {Icm42688Counter::fifo_bad_count, "fifo_bad_count"},
+    {Icm42688Counter::fifo_bad_header, "fifo_bad_header"},
+    {Icm42688Counter::fifo_empty_read, "fifo_empty_read"},
+    {Icm42688Counter::fifo_invalid_data, "fifo_invalid_data"},
+    {Icm42688Counter::fifo_flushes, "fifo_flushes"},
+    {Icm42688Counter::fifo_period_stamps, "fifo_period_stamps"}};
+constexpr const auto& counterNames(Icm42688Counter) { return kIcm42688Counters; }
+
 struct Icm42688FifoConfig {
   bool enabled = false;
   int watermark_samples = 10;  // records per watermark interrupt, 1 .. 128 (the 2 KB FIFO / 16 bytes)
@@ -65,12 +101,12 @@ class Icm42688Driver {
   std::vector<ImuReading> readFifo(std::optional<std::int64_t> edge_utime);
 
   // Reads every configuration register back and re-applies the ones that changed (counted in
-  // "config_mismatch"); in FIFO mode a repair also flushes the FIFO, whose contents may not be packet 3.
+  // config_mismatch); in FIFO mode a repair also flushes the FIFO, whose contents may not be packet 3.
   // Returns how many differed.
   int verifyConfiguration();
 
   State state() const { return state_; }
-  const Counters& counters() const { return counters_; }
+  const Counters<Icm42688Counter>& counters() const { return counters_; }
   double accelLsb() const { return accel_lsb_; }  // m/s^2 per count
   double gyroLsb() const { return gyro_lsb_; }    // rad/s per count
 
@@ -81,7 +117,7 @@ class Icm42688Driver {
   void flushFifo();
 
   Icm42688Config config_;
-  Counters counters_;
+  Counters<Icm42688Counter> counters_;
   RegisterDevice device_;
   SampleStamper stamper_;
   RegisterTable table_;

@@ -18,6 +18,27 @@
 
 namespace imucal::drivers {
 
+// The counters; the table's order is the log line's (summary()).
+enum class J1939Counter {
+  frames, samples, not_extended, other_pgn, other_source, bad_length, not_available, error_indicator,
+  reserved_value, merit_error, merit_degraded, unpaired, timestamp_backwards
+};
+inline constexpr CounterName<J1939Counter> kJ1939Counters[] = {
+    {J1939Counter::frames, "frames"},
+    {J1939Counter::samples, "samples"},
+    {J1939Counter::not_extended, "not_extended"},
+    {J1939Counter::other_pgn, "other_pgn"},
+    {J1939Counter::other_source, "other_source"},
+    {J1939Counter::bad_length, "bad_length"},
+    {J1939Counter::not_available, "not_available"},
+    {J1939Counter::error_indicator, "error_indicator"},
+    {J1939Counter::reserved_value, "reserved_value"},
+    {J1939Counter::merit_error, "merit_error"},
+    {J1939Counter::merit_degraded, "merit_degraded"},
+    {J1939Counter::unpaired, "unpaired"},
+    {J1939Counter::timestamp_backwards, "timestamp_backwards"}};
+constexpr const auto& counterNames(J1939Counter) { return kJ1939Counters; }
+
 struct J1939ImuConfig {
   std::optional<std::uint8_t> source_address;  // nullopt: lock onto the first IMU source seen
   std::int64_t pair_window_us = 5000;          // rate and acceleration frames this close belong together
@@ -33,7 +54,7 @@ class J1939Imu {
   explicit J1939Imu(const J1939ImuConfig& config);
   // Feeds one frame; returns a reading when it completes a pair.
   std::optional<ImuReading> add(const CanFrame& frame);
-  const Counters& counters() const { return counters_; }
+  const Counters<J1939Counter>& counters() const { return counters_; }
   std::optional<std::uint8_t> source() const { return source_; }
 
  private:
@@ -41,7 +62,7 @@ class J1939Imu {
   std::optional<ImuReading> pair();
 
   J1939ImuConfig config_;
-  Counters counters_;
+  Counters<J1939Counter> counters_;
   std::optional<std::uint8_t> source_;
   enum class Kind { Rate, Accel };
   void dropOrphanedTrailer(Kind arriving);

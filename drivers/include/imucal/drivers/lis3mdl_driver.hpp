@@ -14,6 +14,32 @@
 
 namespace imucal::drivers {
 
+// The driver's failure counters; the table's order is its log line's (summary()).
+enum class Lis3mdlCounter {
+  samples, bus_errors, bus_retries, transfer_failures, resets, who_am_i_mismatch, reset_not_cleared,
+  configure_failed, config_mismatch, config_reapply_failed, data_not_ready, empty_polls, data_overrun,
+  field_saturated, timestamp_backwards, stale_edge, missed_samples
+};
+inline constexpr CounterName<Lis3mdlCounter> kLis3mdlCounters[] = {
+    {Lis3mdlCounter::samples, "samples"},
+    {Lis3mdlCounter::bus_errors, "bus_errors"},
+    {Lis3mdlCounter::bus_retries, "bus_retries"},
+    {Lis3mdlCounter::transfer_failures, "transfer_failures"},
+    {Lis3mdlCounter::resets, "resets"},
+    {Lis3mdlCounter::who_am_i_mismatch, "who_am_i_mismatch"},
+    {Lis3mdlCounter::reset_not_cleared, "reset_not_cleared"},
+    {Lis3mdlCounter::configure_failed, "configure_failed"},
+    {Lis3mdlCounter::config_mismatch, "config_mismatch"},
+    {Lis3mdlCounter::config_reapply_failed, "config_reapply_failed"},
+    {Lis3mdlCounter::data_not_ready, "data_not_ready"},
+    {Lis3mdlCounter::empty_polls, "empty_polls"},
+    {Lis3mdlCounter::data_overrun, "data_overrun"},
+    {Lis3mdlCounter::field_saturated, "field_saturated"},
+    {Lis3mdlCounter::timestamp_backwards, "timestamp_backwards"},
+    {Lis3mdlCounter::stale_edge, "stale_edge"},
+    {Lis3mdlCounter::missed_samples, "missed_samples"}};
+constexpr const auto& counterNames(Lis3mdlCounter) { return kLis3mdlCounters; }
+
 struct Lis3mdlConfig {
   std::uint8_t address = 0x1C;
   int full_scale_gauss = 4;  // 4, 8, 12, 16
@@ -37,7 +63,7 @@ class Lis3mdlDriver {
   void start();
   std::optional<MagReading> read(std::optional<std::int64_t> edge_utime);
   int verifyConfiguration();
-  const Counters& counters() const { return counters_; }
+  const Counters<Lis3mdlCounter>& counters() const { return counters_; }
   double lsbMicrotesla() const { return lsb_ut_; }
   bool ready() const { return ready_; }
 
@@ -45,7 +71,7 @@ class Lis3mdlDriver {
   void resetAndConfigure();
 
   Lis3mdlConfig config_;
-  Counters counters_;
+  Counters<Lis3mdlCounter> counters_;
   RegisterDevice device_;
   SampleStamper stamper_;
   RegisterTable table_;

@@ -3,8 +3,8 @@
 // optional bank-select register, the configuration table written, checked and repaired, and the
 // reset-to-ready sequence run a bounded number of times.
 //
-// The Counters passed in must declare bus_errors, bus_retries, transfer_failures, configure_failed,
-// config_mismatch and config_reapply_failed.
+// The Counters<E> passed in must declare bus_errors, bus_retries, transfer_failures, configure_failed,
+// config_mismatch and config_reapply_failed (a driver whose enum lacks one does not compile).
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -18,10 +18,28 @@
 
 namespace imucal::drivers {
 
+// The counters a RegisterDevice counts in.
+struct RegisterDeviceCounters {
+  RetryCounters retry;
+  CounterRef transfer_failures;
+  CounterRef configure_failed;
+  CounterRef config_mismatch;
+  CounterRef config_reapply_failed;
+  template <class E>
+  static RegisterDeviceCounters of(Counters<E>& counters) {
+    return {RetryCounters::of(counters), counters.ref(E::transfer_failures), counters.ref(E::configure_failed),
+            counters.ref(E::config_mismatch), counters.ref(E::config_reapply_failed)};
+  }
+};
+
 class RegisterDevice {
  public:
-  RegisterDevice(I2cBus& bus, std::uint8_t address, const RetryPolicy& retry, Clock& clock, Counters& counters,
-                 std::optional<std::uint8_t> bank_register = std::nullopt);
+  RegisterDevice(I2cBus& bus, std::uint8_t address, const RetryPolicy& retry, Clock& clock,
+                 const RegisterDeviceCounters& counters, std::optional<std::uint8_t> bank_register = std::nullopt);
+  template <class E>
+  RegisterDevice(I2cBus& bus, std::uint8_t address, const RetryPolicy& retry, Clock& clock, Counters<E>& counters,
+                 std::optional<std::uint8_t> bank_register = std::nullopt)
+      : RegisterDevice(bus, address, retry, clock, RegisterDeviceCounters::of(counters), bank_register) {}
 
   std::uint8_t readReg(std::uint8_t reg);
   void writeReg(std::uint8_t reg, std::uint8_t value);
@@ -38,9 +56,9 @@ class RegisterDevice {
   void assumeBank(std::uint8_t bank) { bank_ = bank; }
 
   // Writes every setting (read-modify-write), calling `after_write` after each, then reads all back; a
-  // setting that does not hold counts "configure_failed" and throws I2cError (the caller resets).
+  // setting that does not hold counts configure_failed and throws I2cError (the caller resets).
   void applyTable(const RegisterTable& table, const std::function<void(const RegisterSetting&)>& after_write = {});
-  // Reads every setting back and re-applies those that changed ("config_mismatch" each). Returns how many
+  // Reads every setting back and re-applies those that changed (config_mismatch each). Returns how many
   // differed; sets *repaired false when a re-applied setting still does not hold.
   int verifyTable(const RegisterTable& table, bool* repaired);
 
@@ -57,7 +75,7 @@ class RegisterDevice {
   std::uint8_t address_;
   RetryPolicy retry_;
   Clock& clock_;
-  Counters& counters_;
+  RegisterDeviceCounters counters_;
   std::optional<std::uint8_t> bank_register_;
   int bank_ = -1;
 };

@@ -23,17 +23,27 @@ struct RetryPolicy {
   }
 };
 
-// Runs `transfer` until it does not throw I2cError. Counts every failure in "bus_errors" and every retry in
-// "bus_retries"; rethrows the last error when all attempts failed.
+// The counters withRetry counts in, from any Counters<E> whose enum declares bus_errors and bus_retries.
+struct RetryCounters {
+  CounterRef bus_errors;
+  CounterRef bus_retries;
+  template <class E>
+  static RetryCounters of(Counters<E>& counters) {
+    return {counters.ref(E::bus_errors), counters.ref(E::bus_retries)};
+  }
+};
+
+// Runs `transfer` until it does not throw I2cError. Counts every failure in bus_errors and every retry in
+// bus_retries; rethrows the last error when all attempts failed.
 template <class Transfer>
-auto withRetry(const RetryPolicy& policy, Clock& clock, Counters& counters, Transfer&& transfer) -> decltype(transfer()) {
+auto withRetry(const RetryPolicy& policy, Clock& clock, const RetryCounters& counters, Transfer&& transfer) -> decltype(transfer()) {
   for (int attempt = 1;; ++attempt) {
     try {
       return transfer();
     } catch (const I2cError&) {
-      counters.increment("bus_errors");
+      counters.bus_errors.increment();
       if (attempt >= policy.attempts) throw;
-      counters.increment("bus_retries");
+      counters.bus_retries.increment();
       clock.sleepUs(policy.backoffUs(attempt));
     }
   }
