@@ -44,39 +44,10 @@ ErrorDynamics::ErrorDynamics(const StateLayout& layout, const FilterConfig& conf
 }
 
 ErrorDynamics::ParamRows ErrorDynamics::paramRows(const Linearization& lin) const {
-  using L = StateLayout;
-  const Mat3& c = lin.c_bn;
   ParamRows j = ParamRows::Zero(6, layout_.paramCount());
-  const auto vel = [&j](int off, int cols) { return j.block(0, off - L::kParamStart, 3, cols); };
-  const auto att = [&j](int off, int cols) { return j.block(3, off - L::kParamStart, 3, cols); };
   for (const auto& info : paramBlocks()) {
-    const int off = layout_.offset(info.block);
-    if (off < 0) continue;
-    switch (info.block) {
-      case ParamBlock::AccelBias:
-        vel(off, 3) = -c * lin.accel_gain_inv;
-        break;
-      case ParamBlock::GyroBias:
-        att(off, 3) = -c * lin.gyro_gain_inv;
-        break;
-      case ParamBlock::AccelScale:
-      case ParamBlock::AccelMisalignment:
-        vel(off, info.size()) = c * blockJacobian(info.block, lin.accel_gain_inv, lin.f_b);
-        break;
-      case ParamBlock::GyroScale:
-      case ParamBlock::GyroMisalignment:
-        att(off, info.size()) = c * blockJacobian(info.block, lin.gyro_gain_inv, lin.w_b);
-        break;
-      case ParamBlock::GyroGSensitivity:
-        att(off, info.size()) = c * blockJacobian(info.block, lin.gyro_gain_inv, lin.f_b);
-        break;
-      case ParamBlock::Gravity:
-        // Gravity is (0, 0, g) in NED: its magnitude error accelerates straight down.
-        j(2, off - L::kParamStart) = 1.0;
-        break;
-      case ParamBlock::LeverArm:  // constant, enters only the pseudo-observations
-        break;
-    }
+    const int off = layout_.paramOffset(info.block);
+    if (off >= 0) info.model->dynamicsColumns(lin, j.middleCols(off, info.size()));
   }
   return j;
 }
@@ -139,19 +110,6 @@ void ErrorDynamics::propagate(StateMat& P, const Linearization& lin, double dt) 
     // The driving noise enters the centre's velocity; its displacement integrates it, as position does.
     addIntegratedWhiteNoise(P, layout_.centre(), layout_.centre() + 3, centre_q_ * Mat3::Identity(), dt);
   }
-}
-
-BlockJacobian blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value) {
-  const ParamBlockInfo& info = blockInfo(block);
-  BlockJacobian j = BlockJacobian::Zero(3, info.size());
-  for (int k = 0; k < info.size(); ++k) {
-    const auto [row, col] = matrixIndex({block, k});
-    // corrected = G^-1 (m - ...): a term of G at (r, c) moves it by -G^-1 e_r v_c; a scale is the term (k, k).
-    const int r = row < 0 ? k : row;
-    const int c = row < 0 ? k : col;
-    j.col(k) = -gain_inv.col(r) * value(c);
-  }
-  return j;
 }
 
 double headingOf(const Mat3& c_bn) { return std::atan2(c_bn(1, 0), c_bn(0, 0)); }

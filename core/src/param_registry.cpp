@@ -2,11 +2,16 @@
 
 #include <stdexcept>
 
+#include "imucal/core/block_model.hpp"
 #include "imucal/core/units.hpp"
 
 namespace imucal {
 
 namespace {
+
+std::shared_ptr<const BlockModel> terms(ParamBlock block, MatrixTerms::Matrix matrix) {
+  return std::make_shared<MatrixTerms>(block, matrix);
+}
 
 std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
   using namespace units;
@@ -17,28 +22,31 @@ std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
   // +-150 mg and +-5 deg/s, sensitivity +-3 %, cross-axis +-2 %, g-sensitivity up to 0.1 deg/s/g).
   // Plausible: beyond any such part, even read as raw counts with a sensitivity 30 % off.
   return {{
-      {ParamBlock::AccelBias, "accel_bias", xyz, "m/s^2", "ug", "ug", micro_g, 0.1 * kStandardGravity,
+      {ParamBlock::AccelBias, std::make_shared<TriadBias>(Reading::Accelerometer), "accel_bias", xyz, "m/s^2", "ug", "ug", micro_g, 0.1 * kStandardGravity,
        0.5 * kStandardGravity, BlockMode::Estimate, BlockMode::Estimate, "accelerometer offset"},
-      {ParamBlock::GyroBias, "gyro_bias", xyz, "rad/s", "deg/h", "deg_per_h", deg_per_h, 1.0 * deg_per_s,
+      {ParamBlock::GyroBias, std::make_shared<TriadBias>(Reading::Gyro), "gyro_bias", xyz, "rad/s", "deg/h", "deg_per_h", deg_per_h, 1.0 * deg_per_s,
        30.0 * deg_per_s, BlockMode::Estimate, BlockMode::Estimate, "gyro offset"},
-      {ParamBlock::AccelScale, "accel_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate,
+      {ParamBlock::AccelScale, terms(ParamBlock::AccelScale, MatrixTerms::Matrix::AccelGain), "accel_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate,
        "accelerometer scale factor error (sensitivity ratio - 1)"},
-      {ParamBlock::GyroScale, "gyro_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate,
+      {ParamBlock::GyroScale, terms(ParamBlock::GyroScale, MatrixTerms::Matrix::GyroGain), "gyro_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate,
        "gyro scale factor error (sensitivity ratio - 1)"},
-      {ParamBlock::AccelMisalignment, "accel_misalignment", {"yx", "zx", "zy"}, "rad", "mrad", "mrad", mrad,
+      {ParamBlock::AccelMisalignment, terms(ParamBlock::AccelMisalignment, MatrixTerms::Matrix::AccelGain),
+       "accel_misalignment", {"yx", "zx", "zy"}, "rad", "mrad", "mrad", mrad,
        1.0 * deg, 5.0 * deg, BlockMode::Off, BlockMode::Estimate, "accelerometer non-orthogonality (lower triangle)"},
-      {ParamBlock::GyroMisalignment, "gyro_misalignment", {"xy", "xz", "yx", "yz", "zx", "zy"}, "rad", "mrad",
+      {ParamBlock::GyroMisalignment, terms(ParamBlock::GyroMisalignment, MatrixTerms::Matrix::GyroGain),
+       "gyro_misalignment", {"xy", "xz", "yx", "yz", "zx", "zy"}, "rad", "mrad",
        "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off, BlockMode::Estimate,
        "gyro cross-axis terms relative to the accelerometer's axes"},
-      {ParamBlock::GyroGSensitivity, "gyro_g_sensitivity", {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"},
+      {ParamBlock::GyroGSensitivity, terms(ParamBlock::GyroGSensitivity, MatrixTerms::Matrix::GyroGSensitivity),
+       "gyro_g_sensitivity", {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"},
        "rad/s/(m/s^2)", "deg/s/g", "deg_per_s_per_g", deg_per_s_per_g, 0.1 * deg_per_s_per_g,
        2.0 * deg_per_s_per_g, BlockMode::Off, BlockMode::Estimate, "gyro rate per specific force (linear acceleration sensitivity)"},
       // Normal gravity runs from 9.780 (equator) to 9.832 m/s^2 (poles): a 1-sigma of a quarter of that
       // span puts the whole range within 2 sigma of the standard value.
-      {ParamBlock::Gravity, "gravity", {""}, "m/s^2", "ug", "ug", micro_g, 0.013, 0.06, BlockMode::Off, BlockMode::Off,
+      {ParamBlock::Gravity, std::make_shared<GravityMagnitude>(), "gravity", {""}, "m/s^2", "ug", "ug", micro_g, 0.013, 0.06, BlockMode::Off, BlockMode::Off,
        "gravity magnitude minus the one assumed"},
       // A hand turns a board about a point a few centimetres from the IMU.
-      {ParamBlock::LeverArm, "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05, 0.5, BlockMode::Off, BlockMode::Off,
+      {ParamBlock::LeverArm, std::make_shared<LeverArmPosition>(), "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05, 0.5, BlockMode::Off, BlockMode::Off,
        "IMU position relative to the centre of the turn, body axes", true},
   }};
 }
@@ -52,6 +60,7 @@ std::array<ParamBlockInfo, kParamBlockCount> checkedTable() {
     if (static_cast<int>(row.block) != i)
       throw std::logic_error("parameter registry: row " + std::to_string(i) + " (" + row.id +
                              ") is not in the ParamBlock enum's order");
+    if (!row.model) throw std::logic_error("parameter registry: " + row.id + " has no BlockModel");
     if (row.size() != kParamBlockSizes[i])
       throw std::logic_error("parameter registry: " + row.id + " has " + std::to_string(row.size()) +
                              " components, kParamBlockSizes says " + std::to_string(kParamBlockSizes[i]));

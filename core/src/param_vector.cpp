@@ -1,5 +1,7 @@
 #include "imucal/core/param_vector.hpp"
 
+#include "imucal/core/block_model.hpp"
+
 #include <algorithm>
 
 #include <stdexcept>
@@ -8,22 +10,7 @@ namespace imucal {
 
 namespace {
 
-double* field(CalibrationParams& p, const ParamRef& ref) {
-  const auto [row, col] = matrixIndex(ref);
-  const int c = ref.component;
-  switch (ref.block) {
-    case ParamBlock::AccelBias: return &p.imu.accel.bias(c);
-    case ParamBlock::GyroBias: return &p.imu.gyro.bias(c);
-    case ParamBlock::AccelScale: return &p.imu.accel.scale(c);
-    case ParamBlock::GyroScale: return &p.imu.gyro.scale(c);
-    case ParamBlock::AccelMisalignment: return &p.imu.accel.misalignment(row, col);
-    case ParamBlock::GyroMisalignment: return &p.imu.gyro.misalignment(row, col);
-    case ParamBlock::GyroGSensitivity: return &p.imu.gyro_g_sensitivity(row, col);
-    case ParamBlock::Gravity: return &p.gravity_error;
-    case ParamBlock::LeverArm: return &p.lever_arm(c);
-  }
-  throw std::logic_error("param_vector: a registry block without a sensor-model field");
-}
+double* field(CalibrationParams& p, const ParamRef& ref) { return &ref.info().model->value(p, ref.component); }
 
 }  // namespace
 

@@ -14,14 +14,18 @@ void zeroRateRow(const StateLayout& layout, const Mat3& c_bn, const Vec3& f_b, c
   h.setZero(layout.size);
   const Vec3 up = c_bn.transpose() * Vec3(0.0, 0.0, -1.0);
   // The expected rate C_true^T w_ie with C_true = (I + [phi x]) C is C^T w_ie + C^T [w_ie x] phi; the
-  // corrected rate with the true parameters is the estimate's plus J dx (blockJacobian).
+  // corrected rate with the true parameters is the estimate's plus J dx (BlockModel::correctionJacobian).
   h.segment<3>(StateLayout::kAtt) = -(up.transpose() * c_bn.transpose() * skew(earth_rate_ned)).transpose();
-  // A bias error dx moves the corrected rate by -gain^-1 dx.
-  h.segment<3>(StateLayout::kGyroBias) = -(up.transpose() * gyro_gain_inv).transpose();
-  for (const ParamBlock block : {ParamBlock::GyroScale, ParamBlock::GyroMisalignment, ParamBlock::GyroGSensitivity}) {
-    if (!layout.has(block)) continue;
-    const BlockJacobian j = blockJacobian(block, gyro_gain_inv, block == ParamBlock::GyroGSensitivity ? f_b : w_b);
-    h.segment(layout.offset(block), j.cols()) = (up.transpose() * j).transpose();
+  // Every term of the gyro's correction (its bias, gain and g-sensitivity) as its block gives it.
+  Linearization lin;
+  lin.c_bn = c_bn;
+  lin.f_b = f_b;
+  lin.w_b = w_b;
+  lin.gyro_gain_inv = gyro_gain_inv;
+  for (const auto& info : paramBlocks()) {
+    if (info.model->reading() != Reading::Gyro || !layout.has(info.block)) continue;
+    const BlockJacobian j = info.model->correctionJacobian(lin);
+    h.segment(layout.offset(info.block), j.cols()) = (up.transpose() * j).transpose();
   }
 }
 

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "imucal/core/block_model.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/state_layout.hpp"
 #include "imucal/core/types.hpp"
@@ -16,23 +17,6 @@ namespace imucal {
 constexpr int kMaxStates = StateLayout::kMaxSize;
 using StateVec = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxStates, 1>;
 using StateMat = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::ColMajor, kMaxStates, kMaxStates>;
-
-// Where the error model is linearized for one step.
-struct Linearization {
-  Mat3 c_bn = Mat3::Identity();   // body to navigation
-  Vec3 f_b = Vec3::Zero();        // corrected specific force, body
-  Vec3 w_b = Vec3::Zero();        // corrected inertial rate, body
-  // Inverse sensor matrices: corrected = gain^-1 (measured - bias [- g-sensitivity f]).
-  Mat3 accel_gain_inv = Mat3::Identity();
-  Mat3 gyro_gain_inv = Mat3::Identity();
-};
-
-// d(corrected)/d(block) of one sensor-model block, 3 x block size, given gain^-1 and the corrected value
-// the block multiplies (specific force for the accelerometer and g-sensitivity, rate for the gyro).
-// Errors are true minus estimated, so a positive bias error lowers the corrected value.
-// On the stack: the filter builds these every step, and a 3x3 matrix is the largest block.
-using BlockJacobian = Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, 9>;
-BlockJacobian blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value);
 
 class ErrorDynamics {
  public:

@@ -12,6 +12,7 @@
 // and its rotation relative to the accelerometer). Component "rc" is the term of row r, column c: how much
 // of the true c-axis value the r-axis reads.
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,8 +53,12 @@ constexpr int kParamStates = paramStatesOfAllBlocks();
 // the sigmas of the estimated parameters stay honest about what was left out.
 enum class BlockMode { Off, Estimate, Consider };
 
+class BlockModel;  // block_model.hpp
+
 struct ParamBlockInfo {
   ParamBlock block;
+  // What the block does: where it lives in the parameters, what an error in it does to the error state.
+  std::shared_ptr<const BlockModel> model;
   std::string id;                       // "accel_bias"; parameter names are id + "_" + component
   std::vector<std::string> components;  // "x", "y", "z"; "yx"...; empty name: the parameter is id itself
   std::string si_unit;                  // "m/s^2"
