@@ -79,9 +79,10 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
 fi
 
 # --- cross build -------------------------------------------------------------------------------------
-# imucal_tests depends on every program; benchmarks and fuzzers are left out (not unit tests). The code
-# is optimized as the native RelWithDebInfo build (-O2), without its debug information: less to compile
-# and write on a shared machine (IMUCAL_ARM64_CXXFLAGS="-O2 -g -DNDEBUG" to debug a fault under qemu).
+# imucal_tests builds every unit test executable (one per layer, tests/CMakeLists.txt) and every program;
+# benchmarks and fuzzers are left out (not unit tests). The code is optimized as the native RelWithDebInfo
+# build (-O2), without its debug information: less to compile and write on a shared machine
+# (IMUCAL_ARM64_CXXFLAGS="-O2 -g -DNDEBUG" to debug a fault under qemu).
 start=$(date +%s)
 cmake -S "$root" -B "$build" -DCMAKE_TOOLCHAIN_FILE="$root/cmake/toolchain-aarch64-linux-gnu.cmake" \
   -DIMUCAL_ARM64_SYSROOT="$sysroot" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
@@ -104,7 +105,7 @@ echo "arm64-test: ${#programs[@]} arm64 executables, built in ${build_s} s"
 # --- run under qemu-user -----------------------------------------------------------------------------
 failed=0
 for exe in "${programs[@]}"; do
-  [ "$(basename "$exe")" = imucal_tests ] && continue
+  [[ "$(basename "$exe")" == imucal_*_tests ]] && continue
   if ! "${qemu[@]}" "$exe" --help >/dev/null 2>&1; then
     echo "arm64-test: $(basename "$exe") --help failed under qemu" >&2
     failed=1
@@ -112,8 +113,8 @@ for exe in "${programs[@]}"; do
 done
 echo "arm64-test: --help of every program under qemu: $([ $failed = 0 ] && echo ok || echo FAILED)"
 
-# The unit tests in one qemu process, less the slow suites (statistical studies, minutes natively) and
-# ImucaldProcess, which starts imucald by posix_spawn and so needs a binfmt handler for aarch64. Tests
+# The unit tests, one qemu process per executable, less the slow suites (statistical studies, minutes
+# natively) and ImucaldProcess, which starts imucald by posix_spawn and so needs a binfmt handler for aarch64. Tests
 # that start imucal or imucal-sim-pub do so through qemu (tests/CMakeLists.txt); LCM traffic in the unit
 # tests stays in memq://, none goes to the network.
 filter="${1:--MonteCarloStudy.*:Diagnose*.*:Convergence.*:ImucaldProcess.*}"
@@ -122,10 +123,19 @@ cd "$build/tests"
 log="$build/arm64-unit-tests.log"
 set +e
 # The whole output to the log (tail -f it to follow); failures and the summary on the terminal.
-"${qemu[@]}" ./imucal_tests --gtest_filter="$filter" > "$log" 2>&1
-rc=$?
+# The executables are those tests/CMakeLists.txt lists in unit_test_targets.cmake.
+read -r -a unit_tests < <(sed -n 's/^set(imucal_unit_test_targets \(.*\))$/\1/p' unit_test_targets.cmake | tr ';' ' ')
+: > "$log"
+rc=0
+for exe in "${unit_tests[@]}"; do
+  echo "== $exe" >> "$log"
+  "${qemu[@]}" "./$exe" --gtest_filter="$filter" >> "$log" 2>&1
+  exe_rc=$?
+  echo "arm64-test: $exe: exit $exe_rc"
+  ((exe_rc == 0)) || rc=1
+done
 set -e
 grep -E '^\[  (FAILED|PASSED|SKIPPED) ' "$log" || true
 test_s=$(($(date +%s) - start))
-echo "arm64-test: imucal_tests --gtest_filter='$filter' under qemu: exit $rc in ${test_s} s (log: $log)"
+echo "arm64-test: ${#unit_tests[@]} unit test executables --gtest_filter='$filter' under qemu: exit $rc in ${test_s} s (log: $log)"
 if ((rc != 0 || failed != 0)); then exit 1; fi

@@ -1,4 +1,4 @@
-// The filter against a multi-position calibration (imu_tk's method, tests/unit/imu_tk_baseline) on the
+// The filter against a multi-position calibration (imu_tk's method, tests/io/imu_tk_baseline) on the
 // same simulated hand-move sequence (configs/handmove-sim.yaml: a 10 s still and eleven moves to poses up
 // to 30 cm apart). First the baseline itself, on noise-free data without g-sensitivity, where it must be
 // exact; then both on the consumer errors, g-sensitivity included, over seeds.
