@@ -2,12 +2,8 @@
 // sessions (still, turn, still) or is triggered, calibrates them and publishes the result and a status.
 // SIGINT / SIGTERM stop it between messages; SIGHUP reloads the configuration file (an invalid one is
 // refused, logged and counted, and the running configuration stays).
-#include <poll.h>
-#include <signal.h>
 #include <spdlog/spdlog.h>
-#include <sys/signalfd.h>
 #include <systemd/sd-daemon.h>
-#include <unistd.h>
 
 #include <CLI/CLI.hpp>
 #include <chrono>
@@ -16,6 +12,7 @@
 #include <thread>
 
 #include "imucal/app/command_line.hpp"
+#include "imucal/app/event_loop.hpp"
 #include "imucal/daemon/calibration_store.hpp"
 #include "imucal/daemon/daemon_config.hpp"
 #include "imucal/daemon/lcm_node.hpp"
@@ -56,6 +53,8 @@ DaemonConfig effectiveConfig(const Options& o) {
 constexpr auto kMinWakeInterval = std::chrono::milliseconds(2);
 // At most this many messages per wake-up, so that signals and finished calibrations are not starved.
 constexpr int kMaxMessagesPerWake = 1000;
+// The periodic work (publishing, the watchdog) runs at least this often when no message arrives.
+constexpr double kPollTimeout = 0.2;  // s
 
 void drainMessages(lcm::LCM& lcm) {
   if (lcm.handle() != 0) return;
@@ -74,19 +73,6 @@ void applyConfig(const DaemonConfig& c) {
   } catch (const std::exception& e) {
     spdlog::error("{}; calibrations will not be persisted", e.what());
   }
-}
-
-// The signals arrive on a descriptor polled with LCM's, so they are handled between messages.
-int blockSignals() {
-  sigset_t set;
-  sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGHUP);
-  if (sigprocmask(SIG_BLOCK, &set, nullptr) != 0) throw std::runtime_error("sigprocmask failed");
-  const int fd = signalfd(-1, &set, SFD_CLOEXEC);
-  if (fd < 0) throw std::runtime_error("signalfd failed");
-  return fd;
 }
 
 void reload(const Options& o, DaemonConfig& running, imucal::daemon::CalibrationService& service,
@@ -130,7 +116,9 @@ int run(const Options& o) {
       spdlog::error("sensor {}: starting without its persisted calibration: {}", id, it->second.restore_error);
     }
   }
-  const int sig_fd = blockSignals();
+  // Signals arrive on a descriptor polled with LCM's, so they are handled between messages; SIGHUP reloads.
+  imucal::app::EventLoop loop;
+  loop.stopOnSignals([&] { reload(o, config, service, node); });
   spdlog::info("listening on {}, {} and {}", config.node.imu_channel, config.node.heading_channel,
                config.node.trigger_channel);
   // Under systemd (Type=notify): ready once subscribed; the watchdog is fed from the loop, so a daemon
@@ -140,37 +128,27 @@ int run(const Options& o) {
   const bool watchdog = sd_watchdog_enabled(0, &watchdog_us) > 0;
   const auto watchdog_period = std::chrono::microseconds(watchdog_us / 2);
   auto last_ping = std::chrono::steady_clock::now();
-  pollfd fds[3] = {{lcm.getFileno(), POLLIN, 0}, {sig_fd, POLLIN, 0}, {service.wakeFd(), POLLIN, 0}};
-  bool stop = false;
-  while (!stop) {
+  bool messages = false;
+  loop.addFd(service.wakeFd(), [&] { node.collectFinished(); });
+  loop.addFd(lcm.getFileno(), [&] {
+    drainMessages(lcm);
+    messages = true;
+  });
+  loop.setPollTimeout(kPollTimeout);
+  loop.afterEachWake([&] {
+    node.tick();
+    // A sensor sending one message per sample at kHz rates would otherwise wake this thread for each:
+    // resting between wake-ups lets the messages gather in LCM's queue and be handled together.
+    if (messages && loop.running()) std::this_thread::sleep_until(loop.lastWake() + kMinWakeInterval);
+    messages = false;
     if (watchdog && std::chrono::steady_clock::now() - last_ping >= watchdog_period) {
       sd_notify(0, "WATCHDOG=1");
       last_ping = std::chrono::steady_clock::now();
     }
-    const int n = poll(fds, 3, 200);
-    const auto wake = std::chrono::steady_clock::now();
-    if (n < 0 && errno != EINTR) throw std::runtime_error("poll failed");
-    if (n > 0 && (fds[1].revents & POLLIN)) {
-      signalfd_siginfo info{};
-      if (read(sig_fd, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
-        if (info.ssi_signo == SIGHUP) {
-          reload(o, config, service, node);
-        } else {
-          spdlog::info("signal {}, stopping", info.ssi_signo);
-          stop = true;
-        }
-      }
-    }
-    if (!stop && n > 0 && (fds[2].revents & POLLIN)) node.collectFinished();
-    const bool messages = !stop && n > 0 && (fds[0].revents & POLLIN);
-    if (messages) drainMessages(lcm);
-    node.tick();
-    // A sensor sending one message per sample at kHz rates would otherwise wake this thread for each:
-    // resting between wake-ups lets the messages gather in LCM's queue and be handled together.
-    if (messages) std::this_thread::sleep_until(wake + kMinWakeInterval);
-  }
+  });
+  loop.run();
+  spdlog::info("signal {}, stopping", loop.stopSignal());
   sd_notify(0, "STOPPING=1");
-  close(sig_fd);
   return 0;
 }
 

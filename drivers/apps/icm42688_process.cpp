@@ -10,7 +10,7 @@ namespace imucal::drivers::node {
 int runIcm42688(const DriverOptions& o, const Icm42688DeviceOpener& open) {
   const Icm42688FileConfig cfg = loadIcm42688Config(o.config);
   const std::string sensor_id = o.sensor_id.empty() ? cfg.process.sensor_id : o.sensor_id;
-  EventLoop loop;
+  app::EventLoop loop;
   loop.stopOnSignals();  // before LCM starts any thread
   lcm::LCM lcm(o.lcm_url);
   if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + o.lcm_url + "'");

@@ -59,7 +59,7 @@ int replay(const J1939FileConfig& cfg, Publisher& out, const std::string& path, 
   return 0;
 }
 
-int live(const J1939FileConfig& cfg, Publisher& out, EventLoop& loop) {
+int live(const J1939FileConfig& cfg, Publisher& out, imucal::app::EventLoop& loop) {
   if (cfg.interface.empty()) throw std::runtime_error("no CAN interface: set 'interface' in the config or replay with --candump");
   // The kernel passes only the two parameter groups (and only the configured source).
   std::vector<CanFilter> filters;
@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
   if (const auto status = command_line.parse(argc, argv)) return *status;
   return node::runGuarded([&] {
     const J1939FileConfig cfg = loadJ1939Config(o.config);
-    EventLoop loop;
+    imucal::app::EventLoop loop;
     loop.stopOnSignals();
     lcm::LCM lcm(o.lcm_url);
     if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + o.lcm_url + "'");

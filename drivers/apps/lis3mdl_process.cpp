@@ -22,7 +22,7 @@ constexpr const auto& counterNames(HeadingCounter) { return kHeadingCounters; }
 
 int runLis3mdl(const DriverOptions& o, const Lis3mdlDeviceOpener& open) {
   const Lis3mdlFileConfig cfg = loadLis3mdlConfig(o.config);
-  EventLoop loop;
+  app::EventLoop loop;
   loop.stopOnSignals();
   lcm::LCM lcm(o.lcm_url);
   if (!lcm.good()) throw std::runtime_error("cannot open LCM at '" + o.lcm_url + "'");

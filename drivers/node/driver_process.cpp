@@ -77,20 +77,20 @@ void printSample(const imucal::heading_sample_t& m) {
   std::fflush(stdout);
 }
 
-CounterLog::CounterLog(EventLoop& loop, double period_s, std::string who, std::function<std::string()> summary)
+CounterLog::CounterLog(app::EventLoop& loop, double period_s, std::string who, std::function<std::string()> summary)
     : who_(std::move(who)), summary_(std::move(summary)) {
   loop.addTimer(period_s, [this] { spdlog::info("{}: counters: {}", who_, summary_()); });
 }
 
 CounterLog::~CounterLog() { spdlog::info("{}: counters at exit: {}", who_, summary_()); }
 
-void verifyPeriodically(EventLoop& loop, double period_s, std::function<int()> verify) {
+void verifyPeriodically(app::EventLoop& loop, double period_s, std::function<int()> verify) {
   loop.addTimer(period_s, [verify = std::move(verify)] {
     if (const int n = verify()) spdlog::warn("{} configuration register(s) had changed and were re-applied", n);
   });
 }
 
-void logStop(const EventLoop& loop, std::int64_t count, const char* what) {
+void logStop(const app::EventLoop& loop, std::int64_t count, const char* what) {
   spdlog::info("stopping ({}) after {} {}", loop.stopSignal() ? strsignal(loop.stopSignal()) : "sample limit reached", count, what);
 }
 

@@ -9,7 +9,7 @@
 
 #include "imucal/app/command_line.hpp"
 #include "imucal/drivers/counters.hpp"
-#include "imucal/drivers/event_loop.hpp"
+#include "imucal/app/event_loop.hpp"
 #include "imucal/drivers/imu_reading.hpp"
 #include "imucal/drivers/lis3mdl_driver.hpp"
 #include "imucal/lcmtypes.hpp"
@@ -47,7 +47,7 @@ void printSample(const imucal::imu_batch_t& m);
 // Logs the counters every `period_s` and once more when destroyed (at exit, however the loop ended).
 class CounterLog {
  public:
-  CounterLog(EventLoop& loop, double period_s, std::string who, std::function<std::string()> summary);
+  CounterLog(app::EventLoop& loop, double period_s, std::string who, std::function<std::string()> summary);
   ~CounterLog();
 
  private:
@@ -56,9 +56,9 @@ class CounterLog {
 };
 
 // Reads the configuration back every `period_s` (`verify` returns how many registers had changed).
-void verifyPeriodically(EventLoop& loop, double period_s, std::function<int()> verify);
+void verifyPeriodically(app::EventLoop& loop, double period_s, std::function<int()> verify);
 // "stopping (signal or limit) after N <what>".
-void logStop(const EventLoop& loop, std::int64_t count, const char* what);
+void logStop(const app::EventLoop& loop, std::int64_t count, const char* what);
 
 // Runs `body` and turns every exception into a critical log line and exit code 1 (2 for bad input).
 int runGuarded(const std::function<int()>& body);

@@ -17,7 +17,7 @@ class LinuxI2cDevice final : public I2cDevice {
     if (line_) return "data-ready line " + line_->name();
     return "polled at " + std::to_string(setup_.poll_hz) + " Hz";
   }
-  void wire(EventLoop& loop, const std::function<void(std::optional<std::int64_t>)>& on_sample) override {
+  void wire(app::EventLoop& loop, const std::function<void(std::optional<std::int64_t>)>& on_sample) override {
     if (line_) {
       loop.addFd(line_->fd(), [this, on_sample] {
         while (const auto edge = line_->readEdge()) on_sample(*edge);

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "imucal/drivers/data_ready_line.hpp"
-#include "imucal/drivers/event_loop.hpp"
+#include "imucal/app/event_loop.hpp"
 #include "imucal/drivers/i2c_bus.hpp"
 
 namespace imucal::drivers::node {
@@ -30,7 +30,7 @@ class I2cDevice {
   virtual I2cBus& bus() = 0;
   virtual std::string sampling() const = 0;  // for the start-up log line
   // Calls `on_sample(edge time)` for every data-ready edge, or `on_sample(nullopt)` at poll_hz.
-  virtual void wire(EventLoop& loop, const std::function<void(std::optional<std::int64_t>)>& on_sample) = 0;
+  virtual void wire(app::EventLoop& loop, const std::function<void(std::optional<std::int64_t>)>& on_sample) = 0;
 };
 
 // The real bus: /dev/i2c-N, with the data-ready line when configured, else polled at poll_hz.

@@ -9,7 +9,7 @@
 
 #include "imucal/drivers/data_ready_line.hpp"
 #include "imucal/drivers/can_socket.hpp"
-#include "imucal/drivers/event_loop.hpp"
+#include "imucal/app/event_loop.hpp"
 #include "imucal/drivers/gpiod_data_ready_line.hpp"
 #include "imucal/drivers/icm42688_config_file.hpp"
 #include "imucal/drivers/linux_i2c_bus.hpp"
@@ -49,7 +49,7 @@ TEST(DriversLinux, MissingCanInterfaceIsAClearError) {
 }
 
 TEST(DriversLinux, EventLoopRunsTimersAndFdsAndStopsOnSigterm) {
-  EventLoop loop;
+  app::EventLoop loop;
   loop.stopOnSignals();
   EmulatedDataReadyLine line;
   std::vector<std::int64_t> edges;
@@ -75,7 +75,7 @@ TEST(DriversLinux, EventLoopRunsTimersAndFdsAndStopsOnSigterm) {
 TEST(DriversLinux, TickTimerGivesTheLatestTickAndTheMissedOnes) {
   const std::int64_t now = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
   const std::int64_t first = now - 55'000;  // 10 ms ticks that started 55 ms ago: ticks 0..5 have passed
-  TickTimer timer(first, 10'000);
+  app::TickTimer timer(first, 10'000);
   std::int64_t missed = -1;
   const auto t = timer.take(&missed);
   ASSERT_TRUE(t);

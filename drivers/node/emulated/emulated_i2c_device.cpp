@@ -41,11 +41,11 @@ class EmulatedI2cDeviceNode final : public I2cDevice {
     bus_.attach(setup.address, *chip_);
     // The pin: every ODR tick, or every watermark's worth of ticks with the FIFO.
     const auto period_us = static_cast<std::int64_t>(std::llround(1e6 * setup.ticks_per_edge / setup.odr_hz));
-    ticks_ = std::make_unique<TickTimer>(m->epoch_utime, period_us);
+    ticks_ = std::make_unique<app::TickTimer>(m->epoch_utime, period_us);
   }
   I2cBus& bus() override { return bus_; }
   std::string sampling() const override { return "emulated data-ready line"; }
-  void wire(EventLoop& loop, const std::function<void(std::optional<std::int64_t>)>& on_sample) override {
+  void wire(app::EventLoop& loop, const std::function<void(std::optional<std::int64_t>)>& on_sample) override {
     loop.addFd(ticks_->fd(), [this, on_sample] {
       if (const auto t = ticks_->take()) on_sample(*t);
     });
@@ -56,7 +56,7 @@ class EmulatedI2cDeviceNode final : public I2cDevice {
   EmulatedMotion motion_;
   std::unique_ptr<emulation::EmulatedI2cDevice> chip_;
   emulation::EmulatedI2cBus bus_;
-  std::unique_ptr<TickTimer> ticks_;
+  std::unique_ptr<app::TickTimer> ticks_;
 };
 
 }  // namespace

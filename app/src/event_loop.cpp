@@ -1,4 +1,4 @@
-#include "imucal/drivers/event_loop.hpp"
+#include "imucal/app/event_loop.hpp"
 
 #include <poll.h>
 #include <signal.h>
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace imucal::drivers {
+namespace imucal::app {
 
 namespace {
 
@@ -48,21 +48,29 @@ void EventLoop::addTimer(double period_s, std::function<void()> on_tick) {
   });
 }
 
-void EventLoop::stopOnSignals() {
+void EventLoop::setPollTimeout(double seconds) {
+  poll_timeout_ms_ = static_cast<int>(std::lround(seconds * 1e3));
+}
+
+void EventLoop::stopOnSignals(std::function<void()> on_hangup) {
   sigset_t set;
   sigemptyset(&set);
   sigaddset(&set, SIGINT);
   sigaddset(&set, SIGTERM);
+  if (on_hangup) sigaddset(&set, SIGHUP);
   if (::pthread_sigmask(SIG_BLOCK, &set, nullptr) != 0) failErrno("pthread_sigmask");
   const int fd = ::signalfd(-1, &set, SFD_CLOEXEC | SFD_NONBLOCK);
   if (fd < 0) failErrno("signalfd");
   owned_fds_.push_back(fd);
-  addFd(fd, [this, fd] {
+  addFd(fd, [this, fd, hangup = std::move(on_hangup)] {
     signalfd_siginfo info{};
-    if (::read(fd, &info, sizeof info) == static_cast<ssize_t>(sizeof info)) {
-      stop_signal_ = static_cast<int>(info.ssi_signo);
-      stop();
+    if (::read(fd, &info, sizeof info) != static_cast<ssize_t>(sizeof info)) return;
+    if (info.ssi_signo == SIGHUP && hangup) {
+      hangup();
+      return;
     }
+    stop_signal_ = static_cast<int>(info.ssi_signo);
+    stop();
   });
 }
 
@@ -72,13 +80,12 @@ void EventLoop::run() {
   while (running_) {
     fds.clear();
     for (const Entry& e : entries_) fds.push_back({e.fd, POLLIN, 0});
-    const int n = ::poll(fds.data(), fds.size(), 1000);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      failErrno("poll");
-    }
-    for (std::size_t i = 0; i < fds.size() && running_; ++i)
+    const int n = ::poll(fds.data(), fds.size(), poll_timeout_ms_);
+    last_wake_ = std::chrono::steady_clock::now();
+    if (n < 0 && errno != EINTR) failErrno("poll");
+    for (std::size_t i = 0; n > 0 && i < fds.size() && running_; ++i)
       if (fds[i].revents & (POLLIN | POLLERR | POLLHUP)) entries_[i].on_ready();
+    if (after_wake_) after_wake_();
   }
 }
 
@@ -100,4 +107,4 @@ std::optional<std::int64_t> TickTimer::take(std::int64_t* missed) {
   return first_utime_ + (ticks_ - 1) * period_us_;
 }
 
-}  // namespace imucal::drivers
+}  // namespace imucal::app

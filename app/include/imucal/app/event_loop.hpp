@@ -1,14 +1,16 @@
 #pragma once
-// One poll() over every file descriptor a driver process waits on: the data-ready GPIO line (or a poll
-// timer), the LCM socket, periodic timers (timerfd) and SIGINT/SIGTERM (signalfd), so a signal never
-// interrupts a bus transfer half-way and shutdown always runs the same exit path.
+// One poll() over every file descriptor a program waits on (a driver's data-ready line, the LCM socket, the
+// daemon's worker wake-up), periodic timers (timerfd) and SIGINT/SIGTERM/SIGHUP (signalfd), so a signal
+// never interrupts a bus transfer or a message half-way and shutdown always runs the same exit path. The
+// daemon and every driver run this loop.
+#include <chrono>
 #include <cstdint>
 #include <functional>
-#include <memory>
 #include <optional>
+#include <memory>
 #include <vector>
 
-namespace imucal::drivers {
+namespace imucal::app {
 
 class EventLoop {
  public:
@@ -21,9 +23,16 @@ class EventLoop {
   void addFd(int fd, std::function<void()> on_ready);
   // Runs `on_tick` every `period_s` (monotonic clock). The first tick is one period from now.
   void addTimer(double period_s, std::function<void()> on_tick);
-  // Stops on SIGINT or SIGTERM. Blocks both signals in the calling thread; call before creating threads
-  // (LCM's) so no thread takes the signal instead of the signalfd.
-  void stopOnSignals();
+  // Stops on SIGINT or SIGTERM; with on_hangup, SIGHUP runs it instead (a reload) and the loop goes on.
+  // Blocks these signals in the calling thread; call before creating threads (LCM's, workers) so no
+  // thread takes a signal instead of the signalfd.
+  void stopOnSignals(std::function<void()> on_hangup = {});
+  // Runs after every wake-up, whether a descriptor was ready or the poll timed out (and once more after
+  // the wake-up that stopped the loop), for work that must happen at least every poll timeout.
+  void afterEachWake(std::function<void()> work) { after_wake_ = std::move(work); }
+  void setPollTimeout(double seconds);  // default 1 s
+  // When the last poll returned (steady clock).
+  std::chrono::steady_clock::time_point lastWake() const { return last_wake_; }
   // Polls until stop(); exceptions from callbacks propagate out of run().
   void run();
   void stop() { running_ = false; }
@@ -38,6 +47,9 @@ class EventLoop {
   };
   std::vector<Entry> entries_;
   std::vector<int> owned_fds_;
+  std::function<void()> after_wake_;
+  int poll_timeout_ms_ = 1000;
+  std::chrono::steady_clock::time_point last_wake_{};
   bool running_ = false;
   int stop_signal_ = 0;
 };
@@ -61,4 +73,4 @@ class TickTimer {
   std::int64_t ticks_ = 0;
 };
 
-}  // namespace imucal::drivers
+}  // namespace imucal::app
