@@ -4,6 +4,25 @@
 
 namespace imucal {
 
+namespace {
+
+// d(corrected)/d(block) of a matrix-valued sensor block given gain^-1 and the corrected value the block
+// multiplies (specific force for the accelerometer and g-sensitivity, rate for the gyro).
+BlockJacobian blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value) {
+  const ParamBlockInfo& info = blockInfo(block);
+  BlockJacobian j = BlockJacobian::Zero(3, info.size());
+  for (int k = 0; k < info.size(); ++k) {
+    const auto [row, col] = matrixIndex({block, k});
+    // corrected = G^-1 (m - ...): a term of G at (r, c) moves it by -G^-1 e_r v_c; a scale is the term (k, k).
+    const int r = row < 0 ? k : row;
+    const int c = row < 0 ? k : col;
+    j.col(k) = -gain_inv.col(r) * value(c);
+  }
+  return j;
+}
+
+}  // namespace
+
 BlockJacobian BlockModel::correctionJacobian(const Linearization&) const { return BlockJacobian::Zero(3, 0); }
 
 void BlockModel::dynamicsColumns(const Linearization& lin, DynamicsColumns cols) const {
@@ -46,18 +65,5 @@ double& GravityMagnitude::value(CalibrationParams& p, int) const { return p.grav
 void GravityMagnitude::dynamicsColumns(const Linearization&, DynamicsColumns cols) const { cols(2, 0) = 1.0; }
 
 double& LeverArmPosition::value(CalibrationParams& p, int component) const { return p.lever_arm(component); }
-
-BlockJacobian blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value) {
-  const ParamBlockInfo& info = blockInfo(block);
-  BlockJacobian j = BlockJacobian::Zero(3, info.size());
-  for (int k = 0; k < info.size(); ++k) {
-    const auto [row, col] = matrixIndex({block, k});
-    // corrected = G^-1 (m - ...): a term of G at (r, c) moves it by -G^-1 e_r v_c; a scale is the term (k, k).
-    const int r = row < 0 ? k : row;
-    const int c = row < 0 ? k : col;
-    j.col(k) = -gain_inv.col(r) * value(c);
-  }
-  return j;
-}
 
 }  // namespace imucal

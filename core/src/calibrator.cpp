@@ -37,7 +37,6 @@ void setNotConverged(CalibrationResult& result, std::size_t k, NotConverged why,
   result.not_converged_reason[k] = std::move(words);
 }
 
-
 void validate(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading) {
   if (imu.size() < 10) throw std::invalid_argument("calibrate: need at least 10 IMU samples, got " + std::to_string(imu.size()));
   for (std::size_t i = 0; i < imu.size(); ++i) {

@@ -21,33 +21,35 @@ std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
   // Priors: a consumer MEMS part out of the box (MPU6050, ICM-42688-P, BMI088 datasheets: offsets to
   // +-150 mg and +-5 deg/s, sensitivity +-3 %, cross-axis +-2 %, g-sensitivity up to 0.1 deg/s/g).
   // Plausible: beyond any such part, even read as raw counts with a sensitivity 30 % off.
+  using M = MatrixTerms::Matrix;
   return {{
-      {ParamBlock::AccelBias, std::make_shared<TriadBias>(Reading::Accelerometer), "accel_bias", xyz, "m/s^2", "ug", "ug", micro_g, 0.1 * kStandardGravity,
-       0.5 * kStandardGravity, BlockMode::Estimate, BlockMode::Estimate, "accelerometer offset"},
-      {ParamBlock::GyroBias, std::make_shared<TriadBias>(Reading::Gyro), "gyro_bias", xyz, "rad/s", "deg/h", "deg_per_h", deg_per_h, 1.0 * deg_per_s,
-       30.0 * deg_per_s, BlockMode::Estimate, BlockMode::Estimate, "gyro offset"},
-      {ParamBlock::AccelScale, terms(ParamBlock::AccelScale, MatrixTerms::Matrix::AccelGain), "accel_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate,
-       "accelerometer scale factor error (sensitivity ratio - 1)"},
-      {ParamBlock::GyroScale, terms(ParamBlock::GyroScale, MatrixTerms::Matrix::GyroGain), "gyro_scale", xyz, "1", "ppm", "ppm", ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate,
-       "gyro scale factor error (sensitivity ratio - 1)"},
-      {ParamBlock::AccelMisalignment, terms(ParamBlock::AccelMisalignment, MatrixTerms::Matrix::AccelGain),
-       "accel_misalignment", {"yx", "zx", "zy"}, "rad", "mrad", "mrad", mrad,
-       1.0 * deg, 5.0 * deg, BlockMode::Off, BlockMode::Estimate, "accelerometer non-orthogonality (lower triangle)"},
-      {ParamBlock::GyroMisalignment, terms(ParamBlock::GyroMisalignment, MatrixTerms::Matrix::GyroGain),
-       "gyro_misalignment", {"xy", "xz", "yx", "yz", "zx", "zy"}, "rad", "mrad",
-       "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off, BlockMode::Estimate,
-       "gyro cross-axis terms relative to the accelerometer's axes"},
-      {ParamBlock::GyroGSensitivity, terms(ParamBlock::GyroGSensitivity, MatrixTerms::Matrix::GyroGSensitivity),
-       "gyro_g_sensitivity", {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"},
-       "rad/s/(m/s^2)", "deg/s/g", "deg_per_s_per_g", deg_per_s_per_g, 0.1 * deg_per_s_per_g,
-       2.0 * deg_per_s_per_g, BlockMode::Off, BlockMode::Estimate, "gyro rate per specific force (linear acceleration sensitivity)"},
+      {ParamBlock::AccelBias, std::make_shared<TriadBias>(Reading::Accelerometer), "accel_bias", xyz, "m/s^2",
+       "ug", "ug", micro_g, 0.1 * kStandardGravity, 0.5 * kStandardGravity, BlockMode::Estimate,
+       BlockMode::Estimate, "accelerometer offset"},
+      {ParamBlock::GyroBias, std::make_shared<TriadBias>(Reading::Gyro), "gyro_bias", xyz, "rad/s", "deg/h",
+       "deg_per_h", deg_per_h, 1.0 * deg_per_s, 30.0 * deg_per_s, BlockMode::Estimate, BlockMode::Estimate,
+       "gyro offset"},
+      {ParamBlock::AccelScale, terms(ParamBlock::AccelScale, M::AccelGain), "accel_scale", xyz, "1", "ppm", "ppm",
+       ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate, "accelerometer scale factor error (sensitivity ratio - 1)"},
+      {ParamBlock::GyroScale, terms(ParamBlock::GyroScale, M::GyroGain), "gyro_scale", xyz, "1", "ppm", "ppm", ppm,
+       0.02, 0.3, BlockMode::Off, BlockMode::Estimate, "gyro scale factor error (sensitivity ratio - 1)"},
+      {ParamBlock::AccelMisalignment, terms(ParamBlock::AccelMisalignment, M::AccelGain), "accel_misalignment",
+       {"yx", "zx", "zy"}, "rad", "mrad", "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off, BlockMode::Estimate,
+       "accelerometer non-orthogonality (lower triangle)"},
+      {ParamBlock::GyroMisalignment, terms(ParamBlock::GyroMisalignment, M::GyroGain), "gyro_misalignment",
+       {"xy", "xz", "yx", "yz", "zx", "zy"}, "rad", "mrad", "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off,
+       BlockMode::Estimate, "gyro cross-axis terms relative to the accelerometer's axes"},
+      {ParamBlock::GyroGSensitivity, terms(ParamBlock::GyroGSensitivity, M::GyroGSensitivity), "gyro_g_sensitivity",
+       {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"}, "rad/s/(m/s^2)", "deg/s/g", "deg_per_s_per_g",
+       deg_per_s_per_g, 0.1 * deg_per_s_per_g, 2.0 * deg_per_s_per_g, BlockMode::Off, BlockMode::Estimate,
+       "gyro rate per specific force (linear acceleration sensitivity)"},
       // Normal gravity runs from 9.780 (equator) to 9.832 m/s^2 (poles): a 1-sigma of a quarter of that
       // span puts the whole range within 2 sigma of the standard value.
-      {ParamBlock::Gravity, std::make_shared<GravityMagnitude>(), "gravity", {""}, "m/s^2", "ug", "ug", micro_g, 0.013, 0.06, BlockMode::Off, BlockMode::Off,
-       "gravity magnitude minus the one assumed"},
+      {ParamBlock::Gravity, std::make_shared<GravityMagnitude>(), "gravity", {""}, "m/s^2", "ug", "ug", micro_g,
+       0.013, 0.06, BlockMode::Off, BlockMode::Off, "gravity magnitude minus the one assumed"},
       // A hand turns a board about a point a few centimetres from the IMU.
-      {ParamBlock::LeverArm, std::make_shared<LeverArmPosition>(), "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05, 0.5, BlockMode::Off, BlockMode::Off,
-       "IMU position relative to the centre of the turn, body axes", true},
+      {ParamBlock::LeverArm, std::make_shared<LeverArmPosition>(), "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05,
+       0.5, BlockMode::Off, BlockMode::Off, "IMU position relative to the centre of the turn, body axes", true},
   }};
 }
 

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
-#include <memory>
 #include <vector>
 
 namespace imucal::app {

@@ -1,7 +1,8 @@
 #pragma once
 // What one parameter block does, held by its registry row (param_registry.hpp): where its values live in
-// the parameters, and how an error in it moves the filter's error state. The filter's dynamics, the still
-// gyro's zero rate and the information bound ask the block, so a new block is its row and one class here.
+// the parameters, and how an error in it moves the filter's error state. The parameter vector, the
+// filter's dynamics (and so the information bound) and the still gyro's zero-rate row ask the block
+// instead of switching on it; docs/architecture.md lists what a new block still touches elsewhere.
 #include <Eigen/Core>
 
 #include "imucal/core/param_registry.hpp"
@@ -87,9 +88,5 @@ class LeverArmPosition : public BlockModel {
  public:
   double& value(CalibrationParams& p, int component) const override;
 };
-
-// d(corrected)/d(block) of a matrix-valued sensor block given gain^-1 and the corrected value the block
-// multiplies (specific force for the accelerometer and g-sensitivity, rate for the gyro).
-BlockJacobian blockJacobian(ParamBlock block, const Mat3& gain_inv, const Vec3& value);
 
 }  // namespace imucal
