@@ -123,9 +123,6 @@ void printSummary(const CalibrationResult& r, const nlohmann::json* truth) {
   for (const ParamCombination& c : r.combinations) std::cout << "determined only together: " << io::combinationText(c) << '\n';
 }
 
-// The history is for plots; more epochs than this show nothing more and cost 0.5 kB each.
-constexpr std::size_t kMaxHistoryEpochs = 20000;
-
 std::vector<std::string> exportPaths(const CalibrateArgs& args) {
   std::vector<std::string> out;
   for (const std::string* p : {&args.intrinsics, &args.kalibr, &args.openvins, &args.vins, &args.orbslam3, &args.corrected_euroc,
@@ -217,10 +214,8 @@ void runCalibrateCommand(const CalibrateArgs& args) {
   io::CalibrateConfig config;
   if (!args.config.empty()) config = io::loadCalibrateConfig(args.config);
   const Recording recording = loadRecording(args.input, config);
-  CalibrateOptions options;
-  options.max_history_epochs = kMaxHistoryEpochs;
-  options.check_halves = true;
-  CalibrationResult result = calibrate(recording.imu, recording.heading, config.filter, options);
+  CalibrationResult result =
+      calibrate(recording.imu, recording.heading, config.filter, reportedCalibrationOptions(HistoryKept::ForPlots));
   // A result whose innovations contradict its model is kept for inspection but promises nothing.
   std::vector<std::string> problems = inconsistencies(result);
   const bool model_misfit = !problems.empty();
@@ -229,7 +224,7 @@ void runCalibrateCommand(const CalibrateArgs& args) {
     const std::string why = writeExports(args, config, recording, result);
     if (!why.empty()) problems.push_back(why);
   }
-  if (!problems.empty()) result.converged.assign(result.converged.size(), false);
+  refuseFor(result, problems);
   nlohmann::json json = io::resultToJson(result);
   json["inputs"] = {{"imu", args.input.imu}, {"lcm_log", args.input.lcm_log}, {"heading", args.input.heading},
                     {"mag", args.input.mag}, {"config", args.config}};

@@ -43,4 +43,19 @@ std::string joinReasons(const std::vector<std::string>& reasons) {
   return out;
 }
 
+CalibrateOptions reportedCalibrationOptions(HistoryKept history) {
+  CalibrateOptions options;
+  options.check_halves = true;
+  // Enough for the convergence times in a process's memory (an 8 kHz session kept whole would hold 0.5 kB a
+  // sample); a plot shows nothing more beyond the larger number.
+  options.max_history_epochs = history == HistoryKept::ForPlots ? 20000 : 5000;
+  return options;
+}
+
+bool refuseFor(CalibrationResult& result, const std::vector<std::string>& reasons) {
+  if (reasons.empty()) return false;
+  result.converged.assign(result.converged.size(), false);
+  return true;
+}
+
 }  // namespace imucal

@@ -1,7 +1,5 @@
 #include "imucal/core/eskf.hpp"
 
-#include "imucal/core/zero_rate.hpp"
-
 #include <cmath>
 #include <stdexcept>
 
@@ -149,53 +147,33 @@ void Eskf::scalarRow(const StateVec& h, double innovation, double variance, doub
   applyUpdate(channel_, y, s);
 }
 
-double Eskf::updateCentre(int channel0, const Vec3& predicted, const Mat3& att_jacobian, const Mat3* gyro_bias_jacobian,
-                          const Mat3& lever_jacobian, double sigma) {
-  const int lever = layout_.offset(ParamBlock::LeverArm);
-  using L = StateLayout;
-  const bool velocity = channel0 == Innovation::VelocityX;
+double Eskf::updateCentre(const CentreObservation& observation, int channel0, const Vec3& device, double sigma) {
+  ObservationPoint point;
+  point.c_bn = nav_.q_nb.toRotationMatrix();
+  point.lever_arm = model_.lever_arm;
+  point.gyro_gain_inv = gyro_gain_inv_;
+  const bool velocity = observation.quantity() == CentreObservation::Quantity::Velocity;
+  if (velocity && (!point.lever_arm.isZero() || layout_.has(ParamBlock::LeverArm)))
+    point.w_b = corrected(last_raw_).gyro - point.c_bn.transpose() * earth_.earthRateNed();
+  observation.rows(point, layout_, centre_rows_);
+  const Vec3 predicted = observation.centreOf(device, point);
+  // The nominal centre's displacement (velocity) where its motion is modelled, else it stays at zero.
+  const Vec3 centre = layout_.hasCentre() ? Vec3(centre_.segment<3>(velocity ? 3 : 0)) : Vec3::Zero();
   double nis = 0.0;
   for (int i = 0; i < 3; ++i) {
-    h_.setZero(layout_.size);
-    h_((velocity ? L::kVel : L::kPos) + i) = 1.0;
-    h_.segment<3>(L::kAtt) = att_jacobian.row(i).transpose();
-    if (gyro_bias_jacobian != nullptr) h_.segment<3>(L::kGyroBias) = gyro_bias_jacobian->row(i).transpose();
-    if (lever >= 0) h_.segment<3>(lever) = lever_jacobian.row(i).transpose();
-    double centre = 0.0;
-    if (layout_.hasCentre()) {
-      const int c = layout_.centre() + (velocity ? 3 : 0) + i;
-      h_(c) = -1.0;
-      centre = centre_((velocity ? 3 : 0) + i);
-    }
+    const MeasurementRow& row = centre_rows_[static_cast<std::size_t>(i)];
     channel_ = channel0 + i;
-    scalarRow(h_, centre - predicted(i), sigma * sigma, nis);
+    if (row.selector >= 0) {
+      scalarSelector(row.selector, centre(i) - predicted(i), sigma * sigma, nis);
+    } else {
+      scalarRow(row.h, centre(i) - predicted(i), sigma * sigma, nis);
+    }
   }
   return nis;
 }
 
 double Eskf::updateZeroVelocity(double sigma) {
-  const Vec3& r = model_.lever_arm;
-  if (!r.isZero() || layout_.has(ParamBlock::LeverArm)) {
-    // Centre velocity v - C (w x r); to first order in the errors it is
-    // v + dv - C (w x r) + [C (w x r) x] phi - C [r x] dbg - C [w x] dr (the gyro bias error enters
-    // through w).
-    const Mat3 c = nav_.q_nb.toRotationMatrix();
-    const Vec3 w = corrected(last_raw_).gyro - c.transpose() * earth_.earthRateNed();
-    const Vec3 u = leverArmVelocity(c, w, r);
-    const Mat3 bias_jacobian = -c * skew(r) * gyro_gain_inv_;
-    return updateCentre(Innovation::VelocityX, nav_.v - u, skew(u), &bias_jacobian, -c * skew(w), sigma);
-  }
-  double nis = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    if (layout_.hasCentre()) {
-      nis += updateDeviceMinusCentre(Innovation::VelocityX + i, StateLayout::kVel + i, layout_.centre() + 3 + i,
-                                     nav_.v(i) - centre_(3 + i), sigma);
-      continue;
-    }
-    channel_ = Innovation::VelocityX + i;
-    scalarSelector(StateLayout::kVel + i, -nav_.v(i), sigma * sigma, nis);
-  }
-  return nis;
+  return updateCentre(kZeroVelocity, Innovation::VelocityX, nav_.v, sigma);
 }
 
 double Eskf::zeroVelocityNis(double sigma) const {
@@ -208,34 +186,7 @@ double Eskf::zeroVelocityNis(double sigma) const {
 }
 
 double Eskf::updateConstantPosition(const Vec3& p_ref, double sigma) {
-  const Vec3& r = model_.lever_arm;
-  if (!r.isZero() || layout_.has(ParamBlock::LeverArm)) {
-    // Centre position p - C r = p + dp - C r + [C r x] phi - C dr.
-    const Mat3 c = nav_.q_nb.toRotationMatrix();
-    const Vec3 u = leverArmPosition(c, r);
-    return updateCentre(Innovation::PositionX, nav_.p - u - p_ref, skew(u), nullptr, -c, sigma);
-  }
-  double nis = 0.0;
-  for (int i = 0; i < 3; ++i) {
-    if (layout_.hasCentre()) {
-      nis += updateDeviceMinusCentre(Innovation::PositionX + i, StateLayout::kPos + i, layout_.centre() + i,
-                                     nav_.p(i) - centre_(i) - p_ref(i), sigma);
-      continue;
-    }
-    channel_ = Innovation::PositionX + i;
-    scalarSelector(StateLayout::kPos + i, p_ref(i) - nav_.p(i), sigma * sigma, nis);
-  }
-  return nis;
-}
-
-double Eskf::updateDeviceMinusCentre(int channel, int device_index, int centre_index, double predicted, double sigma) {
-  h_.setZero(layout_.size);
-  h_(device_index) = 1.0;
-  h_(centre_index) = -1.0;
-  channel_ = channel;
-  double nis = 0.0;
-  scalarRow(h_, -predicted, sigma * sigma, nis);
-  return nis;
+  return updateCentre(kConstantPosition, Innovation::PositionX, nav_.p - p_ref, sigma);
 }
 
 Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double gate_sigma, double max_elevation) {
@@ -245,15 +196,16 @@ Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double ga
     out.undefined = true;
     return out;
   }
-  headingJacobian(c, layout_, h_);
-  const double y = wrapAngle(heading - headingOf(c)) - h_.dot(dx_);
+  HeadingObservation::row(c, layout_, row_);
+  const StateVec& h = row_.h;
+  const double y = wrapAngle(heading - headingOf(c)) - h.dot(dx_);
   const double r = sigma * sigma;
-  const double s_pred = h_.dot(P_ * h_) + r;
+  const double s_pred = h.dot(P_ * h) + r;
   out.innovation = y;
   out.nis = y * y / s_pred;
   if (gate_sigma > 0.0 && out.nis > gate_sigma * gate_sigma) return out;
   double s = 0.0;
-  josephScalarUpdate(P_, h_, r, gain_, s, has_considered_ ? &update_mask_ : nullptr);
+  josephScalarUpdate(P_, h, r, gain_, s, has_considered_ ? &update_mask_ : nullptr);
   out.accepted = true;
   applyUpdate(Innovation::Heading, y, s);
   return out;
@@ -267,19 +219,19 @@ Eskf::ZeroRateOutcome Eskf::updateZeroRate(const ImuSample& mean_raw, double sec
   const Vec3 w_ie = earth_.earthRateNed();
   // The gyro matrix multiplies the true rate, which at rest is the Earth's (or nothing): not the corrected
   // reading, whose noise and bias error would make the scale look observable at a still.
-  zeroRateRow(layout_, c, m.accel, c.transpose() * w_ie, gyro_gain_inv_, w_ie, h_);
+  ZeroRateObservation::row(layout_, c, m.accel, c.transpose() * w_ie, gyro_gain_inv_, w_ie, row_);
+  const StateVec& h = row_.h;
   const Vec3 up = c.transpose() * Vec3(0.0, 0.0, -1.0);
-  const double y = up.dot(c.transpose() * w_ie - m.gyro) - h_.dot(dx_);
-  // psd is the reading's; an axis read at a gain below one carries more of it once corrected.
-  const double r = zeroRateVariance(psd * (gyro_gain_inv_.transpose() * up).squaredNorm(), seconds, earth_.earth_rate);
+  const double y = up.dot(c.transpose() * w_ie - m.gyro) - h.dot(dx_);
+  const double r = ZeroRateObservation::variance(psd, c, gyro_gain_inv_, seconds, earth_.earth_rate);
   out.innovation = y;
-  out.nis = y * y / (h_.dot(P_ * h_) + r);
+  out.nis = y * y / (h.dot(P_ * h) + r);
   // Gated against the prior, not the current covariance: a filter that has gone wrong with confidence must
   // still hear the still gyro; only a rate no gyro at rest reads (a slow turn taken for a still) is refused.
-  const double prior_nis = y * y / (h_.dot(prior_P_ * h_) + r);
+  const double prior_nis = y * y / (h.dot(prior_P_ * h) + r);
   if (gate_sigma > 0.0 && prior_nis > gate_sigma * gate_sigma) return out;
   double s = 0.0;
-  josephScalarUpdate(P_, h_, r, gain_, s, has_considered_ ? &update_mask_ : nullptr);
+  josephScalarUpdate(P_, h, r, gain_, s, has_considered_ ? &update_mask_ : nullptr);
   out.accepted = true;
   applyUpdate(Innovation::ZeroRate, y, s);
   return out;

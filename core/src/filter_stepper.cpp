@@ -21,9 +21,9 @@ InitialAlignment startFilter(Eskf& filter, const std::vector<ImuSample>& imu, co
 }
 
 FilterStepper::FilterStepper(Eskf& filter, const MeasurementConfig& measurements, std::size_t per_step)
-    : filter_(filter), m_(measurements), per_step_(per_step < 1 ? 1 : per_step), previous_(filter.lastRaw()),
-      step_start_(filter.time()) {
-  pending_.reserve(per_step_ + 1);
+    : filter_(filter), m_(measurements), schedule_(per_step, measurements.steps_merged_at_rest),
+      previous_(filter.lastRaw()), step_start_(filter.time()) {
+  pending_.reserve(schedule_.perStep() + 1);
 }
 
 void FilterStepper::addHeading(double t, double heading) { headings_.push_back({t, heading}); }
@@ -51,9 +51,7 @@ void FilterStepper::applyHeading(double value) {
 
 bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool held, bool still) {
   if (m_.zero_rate) still_run_.observe(s, still, end_step);
-  step_at_rest_ = (in_step_ == 0 || step_at_rest_) && still && held;
-  const std::size_t length = step_at_rest_ ? static_cast<std::size_t>(std::max(1, m_.steps_merged_at_rest)) * per_step_ : per_step_;
-  const bool last = ++in_step_ >= length || end_step;
+  const bool last = schedule_.add(still && held, end_step);
   // A heading inside the step splits it: the filter is brought to its time and updated there. One at the
   // step's last sample waits for the pseudo-observations, as at the sample itself.
   bool at_sample = false;
@@ -80,7 +78,7 @@ bool FilterStepper::addImu(const ImuSample& s, bool end_step, bool held, bool st
 
 void FilterStepper::applyZeroRate() {
   const double seconds = still_run_.seconds();
-  if (seconds >= m_.zero_rate_min_seconds) {
+  if (ZeroRateObservation::scheduled(m_, seconds)) {
     const auto r = filter_.updateZeroRate(still_run_.mean(), seconds, m_.zero_rate_psd, m_.zero_rate_gate_sigma);
     if (r.accepted) {
       ++stats_.zero_rate_updates;
@@ -95,18 +93,17 @@ void FilterStepper::applyZeroRate() {
 
 void FilterStepper::endStep(bool held) {
   if (!pending_.empty()) flush();
-  // The pseudo-observations' sigma for a step that merged several (see steps_merged_at_rest).
-  const double merged = std::sqrt(static_cast<double>(std::max<std::size_t>(1, in_step_ / per_step_)));
+  const double merged = schedule_.merged();
   if (probe_ && m_.zero_velocity && m_.free_moves && !held)
-    free_step_nis_.push_back({filter_.time(), filter_.zeroVelocityNis(m_.zero_velocity_sigma / merged) / 3.0});
-  if (m_.zero_velocity && (held || !m_.free_moves)) {
-    velocity_nis_sum_ += filter_.updateZeroVelocity(m_.zero_velocity_sigma / merged);
+    free_step_nis_.push_back({filter_.time(), filter_.zeroVelocityNis(kZeroVelocity.sigma(m_, merged)) / 3.0});
+  if (kZeroVelocity.scheduled(m_, held)) {
+    velocity_nis_sum_ += filter_.updateZeroVelocity(kZeroVelocity.sigma(m_, merged));
     ++stats_.zero_velocity_updates;
     stats_.zero_velocity_seconds += filter_.time() - step_start_;
     stats_.velocity_nis_mean = velocity_nis_sum_ / (3.0 * static_cast<double>(stats_.zero_velocity_updates));
   }
-  if (m_.constant_position && !m_.free_moves) {
-    position_nis_sum_ += filter_.updateConstantPosition(Vec3::Zero(), m_.constant_position_sigma / merged);
+  if (kConstantPosition.scheduled(m_, held)) {
+    position_nis_sum_ += filter_.updateConstantPosition(Vec3::Zero(), kConstantPosition.sigma(m_, merged));
     ++stats_.position_updates;
     stats_.position_nis_mean = position_nis_sum_ / (3.0 * static_cast<double>(stats_.position_updates));
   }
@@ -116,7 +113,7 @@ void FilterStepper::endStep(bool held) {
     applyHeading(headings_.front().value);
     headings_.pop_front();
   }
-  in_step_ = 0;
+  schedule_.next();
   step_start_ = filter_.time();
   ++steps_;
 }

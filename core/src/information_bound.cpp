@@ -1,9 +1,10 @@
 #include "imucal/core/information_bound.hpp"
 
+#include <array>
 #include <stdexcept>
 
 #include "imucal/core/initial_alignment.hpp"
-#include "imucal/core/rotation.hpp"
+#include "imucal/core/measurement_model.hpp"
 #include "imucal/core/sample_clock.hpp"
 #include "imucal/core/zero_rate.hpp"
 
@@ -56,7 +57,7 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
 
   BoundResult out;
   out.names = layout.paramNames();
-  StateVec K, hrow;
+  StateVec K;
   double s = 0.0;
   // Considered parameters are never updated, as in the filter.
   const std::vector<bool> updatable = layout.updatable();
@@ -80,8 +81,22 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
   // The filter's zero-rate updates (filter_stepper.cpp): a still run ends at the first point that is not
   // still, or at the trajectory's end, and is used at the end of that step.
   StillRunMean still_run;
-  for (std::size_t first = 0; first + 1 < traj.size(); first += per_step) {
-    const std::size_t k = std::min(traj.size() - 1, first + per_step);
+  StepSchedule schedule(per_step, m.steps_merged_at_rest);
+  ObservationPoint point;  // the truth's IMU sits at the centre: no lever arm in the sensor model
+  std::array<MeasurementRow, 3> rows;
+  MeasurementRow row;
+  const auto centreAtRest = [&](const TrajectoryPoint& p) { return p.still || (m.hold_turns && p.held); };
+  const auto apply = [&](const MeasurementRow& r, double variance) {
+    if (r.selector >= 0) {
+      josephSelectorUpdate(P, r.selector, variance, K, s, mask);
+    } else {
+      josephScalarUpdate(P, r.h, variance, K, s, mask);
+    }
+  };
+  std::size_t first = 0;
+  for (std::size_t k = 1; k < traj.size(); ++k) {
+    // As the stepper: a step merges only where the zero rate's resting samples are also held.
+    if (!schedule.add(m.zero_rate && traj[k].still && centreAtRest(traj[k]), k + 1 == traj.size())) continue;
     for (std::size_t j = first + 1; m.zero_rate && j <= k; ++j)
       still_run.observe({traj[j].t, traj[j].f_b, traj[j].w_b, 0}, traj[j].still, j + 1 == traj.size());
     const Linearization lin = linearizeStep(traj, first, k);
@@ -93,44 +108,34 @@ BoundResult informationBound(const std::vector<TrajectoryPoint>& traj, const std
       t = th;
       const double w = (th - traj[first].t) / (traj[k].t - traj[first].t);
       const Mat3 c_heading = traj[first].q_nb.slerp(w, traj[k].q_nb).toRotationMatrix();
-      if (!headingDefined(c_heading, m.heading_max_elevation)) continue;  // as the filter: not used there
-      headingJacobian(c_heading, layout, hrow);
-      josephScalarUpdate(P, hrow, m.heading_sigma * m.heading_sigma, K, s, mask);
+      if (!HeadingObservation::scheduled(m, c_heading)) continue;  // as the filter: not used there
+      HeadingObservation::row(c_heading, layout, row);
+      apply(row, HeadingObservation::variance(m));
     }
     if (traj[k].t > t) dynamics.propagate(P, lin, traj[k].t - t);
-    // The truth's IMU sits at the centre; an estimated lever arm still enters the centre's rows, as in the
-    // filter: velocity -C [w x] dr, position -C dr.
-    const int lever = layout.offset(ParamBlock::LeverArm);
-    const Mat3 c = traj[k].q_nb.toRotationMatrix();
-    // With the centre's motion modelled, the rows see the device minus the centre, as in the filter.
-    const auto update = [&](int index, int centre_index, const Mat3& lever_jacobian, int row, double sigma) {
-      if (lever < 0 && !layout.hasCentre()) {
-        josephSelectorUpdate(P, index, sigma * sigma, K, s, mask);
-        return;
-      }
-      hrow.setZero(layout.size);
-      hrow(index) = 1.0;
-      if (lever >= 0) hrow.segment<3>(lever) = lever_jacobian.row(row).transpose();
-      if (layout.hasCentre()) hrow(layout.centre() + centre_index) = -1.0;
-      josephScalarUpdate(P, hrow, sigma * sigma, K, s, mask);
-    };
-    if (m.zero_velocity && (traj[k].still || !m.free_moves || (m.hold_turns && traj[k].held))) {
-      const Mat3 jv = -c * skew(traj[k].w_b);
-      for (int i = 0; i < 3; ++i) update(StateLayout::kVel + i, 3 + i, jv, i, m.zero_velocity_sigma);
-    }
-    if (m.constant_position && !m.free_moves) {
-      for (int i = 0; i < 3; ++i) update(StateLayout::kPos + i, i, -c, i, m.constant_position_sigma);
+    point.c_bn = traj[k].q_nb.toRotationMatrix();
+    point.w_b = traj[k].w_b;
+    const double merged = schedule.merged();
+    for (const CentreObservation* observation : {&kZeroVelocity, &kConstantPosition}) {
+      if (!observation->scheduled(m, centreAtRest(traj[k]))) continue;
+      const double sigma = observation->sigma(m, merged);
+      observation->rows(point, layout, rows);
+      for (const MeasurementRow& r : rows) apply(r, sigma * sigma);
     }
     if (still_run.ended()) {
       const double seconds = still_run.seconds();
-      if (seconds >= m.zero_rate_min_seconds) {
+      if (ZeroRateObservation::scheduled(m, seconds)) {
         const ImuSample mean = still_run.mean();
-        zeroRateRow(layout, c, mean.accel, mean.gyro, Mat3::Identity(), config.earth.earthRateNed(), hrow);
-        josephScalarUpdate(P, hrow, zeroRateVariance(m.zero_rate_psd, seconds, config.earth.earth_rate), K, s, mask);
+        const Vec3 w_ie = config.earth.earthRateNed();
+        ZeroRateObservation::row(layout, point.c_bn, mean.accel, mean.gyro, Mat3::Identity(), w_ie, row);
+        apply(row, ZeroRateObservation::variance(m.zero_rate_psd, point.c_bn, Mat3::Identity(), seconds,
+                                                 config.earth.earth_rate));
       }
       still_run.clear();
     }
     record(traj[k].t);
+    first = k;
+    schedule.next();
   }
   out.covariance = P;
   out.sigma = out.sigma_history.back();

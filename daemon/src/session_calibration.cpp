@@ -12,16 +12,11 @@
 namespace imucal::daemon {
 
 namespace {
-// Enough for the convergence times; a session at 8 kHz would otherwise keep 0.5 kB for each sample.
-constexpr std::size_t kMaxHistoryEpochs = 5000;
 // The daemon's session is a turn about the vertical (body z down): its gyro bias needs heading to settle.
 constexpr int kTurnAxis = 2;
 
 CalibrationResult run(const SessionInput& in, const std::vector<HeadingSample>& heading, const FilterConfig& filter) {
-  CalibrateOptions options;
-  options.max_history_epochs = kMaxHistoryEpochs;
-  options.check_halves = true;
-  return calibrate(in.imu, heading, filter, options);
+  return calibrate(in.imu, heading, filter, reportedCalibrationOptions(HistoryKept::InMemory));
 }
 
 // The same filter with the centre held only where the data say it was at rest (free_moves.hpp).
@@ -150,7 +145,7 @@ SessionOutcome calibrateSession(const SessionInput& in) {
   } catch (const std::exception&) {
     out.advice.clear();  // a motion the planner cannot judge must not cost the calibration
   }
-  if (const std::vector<std::string> problems = inconsistencies(result); !problems.empty()) {
+  if (const std::vector<std::string> problems = inconsistencies(result); refuseFor(result, problems)) {
     out.failure = "refused: the model does not describe this session: " + problems.front();
     out.nothing_left = false;
     return out;

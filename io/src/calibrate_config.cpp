@@ -4,6 +4,7 @@
 #include "imucal/core/units.hpp"
 #include "imucal/io/config.hpp"
 #include "imucal/io/config_sections.hpp"
+#include "calibrate_config_keys.hpp"
 #include "imucal/io/param_units.hpp"
 #include "imucal/io/yaml_fields.hpp"
 
@@ -12,6 +13,34 @@ namespace imucal::io {
 namespace {
 
 using units::deg;
+
+// Reads a section's keys (calibrate_config_keys.hpp); an absent key keeps the value it finds.
+class KeyReader {
+ public:
+  explicit KeyReader(YamlSection& s) : s_(s) {}
+  void flag(const std::string& key, bool& value) { value = s_.boolean(key, value); }
+  void number(const std::string& key, double& si, const Range& range, double si_per_unit = 1.0) {
+    si = s_.number(key, si / si_per_unit, range) * si_per_unit;
+  }
+  void count(const std::string& key, int& value, const Range& range) { value = s_.integer(key, value, range); }
+  void density(const std::string& key, double& psd, double si_per_unit) {
+    psd = std::pow(s_.number(key, std::sqrt(psd) / si_per_unit, Range::nonNegative()) * si_per_unit, 2);
+  }
+  void optional(const std::string& key, double& si, const Range& range, double si_per_unit) {
+    number(key, si, range, si_per_unit);
+  }
+
+ private:
+  YamlSection& s_;
+};
+
+// Reads one section's keys with `keys` and rejects any other.
+template <class Keys, class... Targets>
+void readSection(YamlSection s, Keys keys, Targets&... targets) {
+  KeyReader reader(s);
+  keys(reader, targets...);
+  s.finish();
+}
 
 template <class Unit, class Parse>
 Unit readUnit(YamlSection& s, const std::string& key, Unit fallback, Parse parse, const std::string& choices) {
@@ -106,14 +135,9 @@ ImuCsvFormat readImuFormat(YamlSection s) {
   f.gyro_counts = readRawCounts(s, "gyro_counts");
   f.accel_axes = readAxes(s, "accel_axes", f.accel_axes);
   f.gyro_axes = readAxes(s, "gyro_axes", f.gyro_axes);
-  f.accel_reads_gravity = s.boolean("accel_reads_gravity", f.accel_reads_gravity);
-  f.check_units = s.boolean("check_units", f.check_units);
   readRetime(s, f.retime_uniformly, &f.retime_auto);
-  f.max_gap = s.number("max_gap_s", f.max_gap, Range::positive());
-  // The datasheet's full-scale setting (0: not given).
-  f.accel_range = s.number("accel_range_g", f.accel_range / units::kStandardGravity, Range::nonNegative()) *
-                  units::kStandardGravity;
-  f.gyro_range = s.number("gyro_range_dps", f.gyro_range / deg, Range::nonNegative()) * deg;
+  KeyReader numbers(s);
+  config_keys::imuNumbers(numbers, f);
   s.finish();
   return f;
 }
@@ -126,11 +150,8 @@ HeadingCsvFormat readHeadingSection(YamlSection s, MeasurementConfig& m) {
   columns.finish();
   f.time_unit = readUnit(s, "time_unit", f.time_unit, parseTimeUnit, timeUnitChoices());
   f.unit = readUnit(s, "unit", f.unit, parseAngleUnit, angleUnitChoices());
-  m.heading_sigma = s.number("sigma_deg", m.heading_sigma / deg, Range::positive()) * deg;
-  m.heading_latency = s.number("latency_ms", m.heading_latency * 1e3) * 1e-3;
-  m.heading_gate_sigma = s.number("gate_sigma", m.heading_gate_sigma, Range::nonNegative());
-  m.heading_max_elevation =
-      s.number("max_elevation_deg", m.heading_max_elevation / deg, Range::between(0.0, 90.0)) * deg;
+  KeyReader numbers(s);
+  config_keys::headingMeasurement(numbers, m);
   s.finish();
   return f;
 }
@@ -145,78 +166,8 @@ void readMagnetometer(YamlSection s, MagCsvFormat& f, MagHeadingOptions& o) {
   f.axes = readAxes(s, "axes", f.axes);
   f.check_units = s.boolean("check_units", f.check_units);
   readRetime(s, f.retime_uniformly);
-  o.declination = s.number("declination_deg", o.declination / deg, Range::between(-180.0, 180.0)) * deg;
-  o.tilt_window = s.number("tilt_window_s", o.tilt_window, Range::positive());
-  o.tilt_sigma = s.number("tilt_sigma_deg", o.tilt_sigma / deg, Range::nonNegative()) * deg;
-  o.inclination = s.number("inclination_deg", o.inclination / deg, Range::between(-90.0, 90.0)) * deg;
-  o.levelled_fit = s.boolean("levelled_fit", o.levelled_fit);
-  o.soft_iron = s.boolean("horizontal_soft_iron", o.soft_iron);
-  o.interval = s.number("heading_interval_s", o.interval, Range::nonNegative());
-  s.finish();
-}
-
-NoiseConfig readNoise(YamlSection s, NoiseConfig n) {
-  n.accel_white = s.number("vrw_m_per_s_per_sqrt_h", n.accel_white / units::m_per_s_per_sqrt_h, Range::positive()) *
-                  units::m_per_s_per_sqrt_h;
-  n.gyro_white =
-      s.number("arw_deg_per_sqrt_h", n.gyro_white / units::deg_per_sqrt_h, Range::positive()) * units::deg_per_sqrt_h;
-  n.accel_bias_walk =
-      s.number("accel_bias_walk_ug_per_sqrt_s", n.accel_bias_walk / units::micro_g, Range::nonNegative()) *
-      units::micro_g;
-  n.gyro_bias_walk = s.number("gyro_bias_walk_deg_per_h_per_sqrt_h", n.gyro_bias_walk / units::deg_per_h_per_sqrt_h,
-                              Range::nonNegative()) *
-                     units::deg_per_h_per_sqrt_h;
-  n.accel_bias_instability =
-      s.number("accel_bias_instability_ug", n.accel_bias_instability / units::micro_g, Range::nonNegative()) *
-      units::micro_g;
-  n.gyro_bias_instability =
-      s.number("gyro_bias_instability_deg_per_h", n.gyro_bias_instability / units::deg_per_h, Range::nonNegative()) *
-      units::deg_per_h;
-  n.from_data = s.boolean("from_data", n.from_data);
-  s.finish();
-  return n;
-}
-
-// prior: {<block>_<unit>: 1-sigma} for every registry block (accel_bias_ug, gyro_misalignment_mrad...), next
-// to the navigation states' keys.
-void readParamPriors(YamlSection& s, ModelOptions& model) {
-  for (const auto& info : paramBlocks()) {
-    const ParamUnit u = paramUnit(info.block);
-    BlockSettings& b = model[info.block];
-    b.sigma = s.number(info.id + "_" + u.suffix, b.sigma / u.factor, Range::positive()) * u.factor;
-  }
-}
-
-PriorConfig readPrior(YamlSection s, PriorConfig p, ModelOptions& model) {
-  readParamPriors(s, model);
-  const Range positive = Range::positive();
-  p.tilt = s.number("tilt_deg", p.tilt / deg, positive) * deg;
-  p.yaw = s.number("yaw_deg", p.yaw / deg, positive) * deg;
-  p.position = s.number("position_m", p.position, positive);
-  p.velocity = s.number("velocity_m_per_s", p.velocity, positive);
-  s.finish();
-  return p;
-}
-
-void readMeasurements(YamlSection s, MeasurementConfig& m) {
-  m.zero_velocity = s.boolean("zero_velocity", m.zero_velocity);
-  m.zero_velocity_sigma = s.number("zero_velocity_sigma_m_per_s", m.zero_velocity_sigma, Range::positive());
-  m.constant_position = s.boolean("constant_position", m.constant_position);
-  m.constant_position_sigma = s.number("constant_position_sigma_m", m.constant_position_sigma, Range::positive());
-  CentreMotionConfig& c = m.centre_motion;
-  c.enabled = s.boolean("centre_motion", c.enabled);
-  c.displacement_sigma = s.number("centre_displacement_mm", c.displacement_sigma * 1e3, Range::positive()) * 1e-3;
-  c.frequency = s.number("centre_frequency_hz", c.frequency, Range::positive());
-  m.heading = s.boolean("heading", m.heading);
-  m.free_moves = s.boolean("free_moves", m.free_moves);
-  m.hold_turns = s.boolean("hold_turns", m.hold_turns);
-  m.zero_rate = s.boolean("zero_rate", m.zero_rate);
-  // 0: measured on the recording's stills (run_config.cpp).
-  m.zero_rate_psd = std::pow(s.number("zero_rate_noise_deg_per_sqrt_h", std::sqrt(m.zero_rate_psd) / units::deg_per_sqrt_h,
-                                      Range::nonNegative()) * units::deg_per_sqrt_h, 2);
-  m.zero_rate_min_seconds = s.number("zero_rate_min_seconds", m.zero_rate_min_seconds, Range::positive());
-  m.steps_merged_at_rest = s.integer("steps_merged_at_rest", m.steps_merged_at_rest, Range::between(1, 20));
-  m.zero_rate_gate_sigma = s.number("zero_rate_gate_sigma", m.zero_rate_gate_sigma, Range::nonNegative());
+  KeyReader numbers(s);
+  config_keys::magnetometerHeading(numbers, o);
   s.finish();
 }
 
@@ -248,18 +199,6 @@ void readParameterValues(YamlSection s, ModelOptions& o) {
   s.finish();
 }
 
-void readFilter(YamlSection s, FilterConfig& f) {
-  f.passes = s.integer("passes", f.passes, Range::between(1, 100));
-  f.full_yaw_reset = s.boolean("full_yaw_reset", f.full_yaw_reset);
-  f.gravity_linearization = s.boolean("gravity_linearization", f.gravity_linearization);
-  f.open_loop_refinement = s.boolean("open_loop_refinement", f.open_loop_refinement);
-  f.alignment_time = s.number("alignment_time_s", f.alignment_time, Range::positive());
-  f.filter_rate = s.number("rate_hz", f.filter_rate, Range::between(1.0, 10000.0));
-  f.converged_sigma_ratio = s.number("converged_sigma_ratio", f.converged_sigma_ratio,
-                                     {[](double v) { return v > 0.0 && v <= 1.0; }, "must be in (0, 1]"});
-  s.finish();
-}
-
 }  // namespace
 
 FilterConfig userFilterDefaults() {
@@ -282,13 +221,13 @@ CalibrateConfig calibrateConfigFrom(YamlSection top) {
   }
   c.heading = readHeadingSection(top.section("heading"), c.filter.measurements);
   readMagnetometer(top.section("magnetometer"), c.mag, c.mag_heading);
-  c.filter.noise = readNoise(top.section("noise"), c.filter.noise);
-  c.filter.prior = readPrior(top.section("prior"), c.filter.prior, c.filter.model);
-  readMeasurements(top.section("measurements"), c.filter.measurements);
+  readSection(top.section("noise"), config_keys::noise<KeyReader>, c.filter.noise);
+  readSection(top.section("prior"), config_keys::prior<KeyReader>, c.filter.prior, c.filter.model);
+  readSection(top.section("measurements"), config_keys::measurements<KeyReader>, c.filter.measurements);
   c.filter.model = readModel(top.section("model"), c.filter.model);
   readParameterValues(top.section("parameters"), c.filter.model);
   c.filter.earth = readEarth(top.section("earth"), c.filter.earth);
-  readFilter(top.section("filter"), c.filter);
+  readSection(top.section("filter"), config_keys::filter<KeyReader>, c.filter);
   top.finish();
   return c;
 }

@@ -5,12 +5,44 @@
 #include "imucal/io/config.hpp"
 #include "imucal/io/config_sections.hpp"
 #include "imucal/io/param_units.hpp"
+#include "calibrate_config_keys.hpp"
 
 namespace imucal::io {
 
 namespace {
 
 using units::deg;
+
+// Writes a section's keys (calibrate_config_keys.hpp) in the units the reader reads.
+class KeyWriter {
+ public:
+  explicit KeyWriter(YAML::Emitter& out) : out_(out) {}
+  void flag(const std::string& key, const bool& value) { out_ << YAML::Key << key << YAML::Value << value; }
+  void number(const std::string& key, const double& si, const Range&, double si_per_unit = 1.0) {
+    emitNumber(out_, key, si / si_per_unit);
+  }
+  void count(const std::string& key, const int& value, const Range&) {
+    out_ << YAML::Key << key << YAML::Value << value;
+  }
+  void density(const std::string& key, const double& psd, double si_per_unit) {
+    emitNumber(out_, key, std::sqrt(psd) / si_per_unit);
+  }
+  void optional(const std::string& key, const double& si, const Range& range, double si_per_unit) {
+    if (si > 0.0) number(key, si, range, si_per_unit);
+  }
+
+ private:
+  YAML::Emitter& out_;
+};
+
+// Writes one section `name` with `keys`.
+template <class Keys, class... Sources>
+void emitSection(YAML::Emitter& out, const std::string& name, Keys keys, Sources... sources) {
+  out << YAML::Key << name << YAML::Value << YAML::BeginMap;
+  KeyWriter writer(out);
+  keys(writer, sources...);
+  out << YAML::EndMap;
+}
 
 void emitText(YAML::Emitter& out, const std::string& key, const std::string& value) {
   out << YAML::Key << key << YAML::Value << value;
@@ -51,12 +83,10 @@ void emitImu(YAML::Emitter& out, const ImuCsvFormat& f) {
   emitRawCounts(out, "gyro_counts", f.gyro_counts);
   emitTexts(out, "accel_axes", f.accel_axes.entries());
   emitTexts(out, "gyro_axes", f.gyro_axes.entries());
-  emitBool(out, "accel_reads_gravity", f.accel_reads_gravity);
-  emitBool(out, "check_units", f.check_units);
   emitText(out, "retime", f.retime_auto ? "auto" : (f.retime_uniformly ? "uniform" : "logged"));
-  emitNumber(out, "max_gap_s", f.max_gap);
-  if (f.accel_range > 0.0) emitNumber(out, "accel_range_g", f.accel_range / units::kStandardGravity);
-  if (f.gyro_range > 0.0) emitNumber(out, "gyro_range_dps", f.gyro_range / units::deg);
+  KeyWriter numbers(out);
+  ImuCsvFormat copy = f;
+  config_keys::imuNumbers(numbers, copy);
   out << YAML::EndMap;
 }
 
@@ -68,10 +98,9 @@ void emitHeading(YAML::Emitter& out, const HeadingCsvFormat& f, const Measuremen
   out << YAML::EndMap;
   emitText(out, "time_unit", unitName(f.time_unit));
   emitText(out, "unit", unitName(f.unit));
-  emitNumber(out, "sigma_deg", m.heading_sigma / deg);
-  emitNumber(out, "latency_ms", m.heading_latency * 1e3);
-  emitNumber(out, "gate_sigma", m.heading_gate_sigma);
-  emitNumber(out, "max_elevation_deg", m.heading_max_elevation / deg);
+  KeyWriter numbers(out);
+  MeasurementConfig copy = m;
+  config_keys::headingMeasurement(numbers, copy);
   out << YAML::EndMap;
 }
 
@@ -86,55 +115,16 @@ void emitMagnetometer(YAML::Emitter& out, const MagCsvFormat& f, const MagHeadin
   emitTexts(out, "axes", f.axes.entries());
   emitBool(out, "check_units", f.check_units);
   emitText(out, "retime", f.retime_uniformly ? "uniform" : "logged");
-  emitNumber(out, "declination_deg", o.declination / deg);
-  emitNumber(out, "tilt_window_s", o.tilt_window);
-  emitNumber(out, "tilt_sigma_deg", o.tilt_sigma / deg);
-  emitNumber(out, "inclination_deg", o.inclination / deg);
-  emitBool(out, "levelled_fit", o.levelled_fit);
-  emitBool(out, "horizontal_soft_iron", o.soft_iron);
-  emitNumber(out, "heading_interval_s", o.interval);
+  KeyWriter numbers(out);
+  MagHeadingOptions copy = o;
+  config_keys::magnetometerHeading(numbers, copy);
   out << YAML::EndMap;
 }
 
 void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
-  out << YAML::Key << "noise" << YAML::Value << YAML::BeginMap;
-  emitNumber(out, "vrw_m_per_s_per_sqrt_h", f.noise.accel_white / units::m_per_s_per_sqrt_h);
-  emitNumber(out, "arw_deg_per_sqrt_h", f.noise.gyro_white / units::deg_per_sqrt_h);
-  emitNumber(out, "accel_bias_walk_ug_per_sqrt_s", f.noise.accel_bias_walk / units::micro_g);
-  emitNumber(out, "gyro_bias_walk_deg_per_h_per_sqrt_h", f.noise.gyro_bias_walk / units::deg_per_h_per_sqrt_h);
-  emitNumber(out, "accel_bias_instability_ug", f.noise.accel_bias_instability / units::micro_g);
-  emitNumber(out, "gyro_bias_instability_deg_per_h", f.noise.gyro_bias_instability / units::deg_per_h);
-  emitBool(out, "from_data", f.noise.from_data);
-  out << YAML::EndMap;
-
-  out << YAML::Key << "prior" << YAML::Value << YAML::BeginMap;
-  emitNumber(out, "tilt_deg", f.prior.tilt / deg);
-  emitNumber(out, "yaw_deg", f.prior.yaw / deg);
-  for (const auto& info : paramBlocks()) {
-    const ParamUnit u = paramUnit(info.block);
-    emitNumber(out, info.id + "_" + u.suffix, f.model[info.block].sigma / u.factor);
-  }
-  emitNumber(out, "position_m", f.prior.position);
-  emitNumber(out, "velocity_m_per_s", f.prior.velocity);
-  out << YAML::EndMap;
-
-  out << YAML::Key << "measurements" << YAML::Value << YAML::BeginMap;
-  emitBool(out, "zero_velocity", f.measurements.zero_velocity);
-  emitNumber(out, "zero_velocity_sigma_m_per_s", f.measurements.zero_velocity_sigma);
-  emitBool(out, "constant_position", f.measurements.constant_position);
-  emitNumber(out, "constant_position_sigma_m", f.measurements.constant_position_sigma);
-  emitBool(out, "centre_motion", f.measurements.centre_motion.enabled);
-  emitNumber(out, "centre_displacement_mm", f.measurements.centre_motion.displacement_sigma * 1e3);
-  emitNumber(out, "centre_frequency_hz", f.measurements.centre_motion.frequency);
-  emitBool(out, "heading", f.measurements.heading);
-  emitBool(out, "free_moves", f.measurements.free_moves);
-  emitBool(out, "hold_turns", f.measurements.hold_turns);
-  emitBool(out, "zero_rate", f.measurements.zero_rate);
-  emitNumber(out, "zero_rate_noise_deg_per_sqrt_h", std::sqrt(f.measurements.zero_rate_psd) / units::deg_per_sqrt_h);
-  emitNumber(out, "zero_rate_min_seconds", f.measurements.zero_rate_min_seconds);
-  emitNumber(out, "zero_rate_gate_sigma", f.measurements.zero_rate_gate_sigma);
-  out << YAML::Key << "steps_merged_at_rest" << YAML::Value << f.measurements.steps_merged_at_rest;
-  out << YAML::EndMap;
+  emitSection(out, "noise", config_keys::noise<KeyWriter>, f.noise);
+  emitSection(out, "prior", config_keys::prior<KeyWriter>, f.prior, f.model);
+  emitSection(out, "measurements", config_keys::measurements<KeyWriter>, f.measurements);
 
   out << YAML::Key << "model" << YAML::Value << YAML::BeginMap;
   const char* modes[] = {"off", "estimate", "consider"};
@@ -155,15 +145,7 @@ void emitFilterSections(YAML::Emitter& out, const FilterConfig& f) {
 
   emitEarth(out, f.earth);
 
-  out << YAML::Key << "filter" << YAML::Value << YAML::BeginMap;
-  out << YAML::Key << "passes" << YAML::Value << f.passes;
-  emitBool(out, "full_yaw_reset", f.full_yaw_reset);
-  emitBool(out, "gravity_linearization", f.gravity_linearization);
-  emitBool(out, "open_loop_refinement", f.open_loop_refinement);
-  emitNumber(out, "alignment_time_s", f.alignment_time);
-  emitNumber(out, "rate_hz", f.filter_rate);
-  emitNumber(out, "converged_sigma_ratio", f.converged_sigma_ratio);
-  out << YAML::EndMap;
+  emitSection(out, "filter", config_keys::filter<KeyWriter>, f);
 }
 
 }  // namespace

@@ -35,13 +35,13 @@ MotionStudyReport runMotionStudy(const SimConfig& sim, const MotionStudyOptions&
     for (std::size_t run = next++; run < runs; run = next++) {
       const std::uint64_t seed = options.first_seed + run;
       const SimOutput out = simulate(sim, seed);
-      const CalibrationResult r = calibrate(out.imu, out.heading, options.filter, options.calibrate);
+      CalibrationResult r = calibrate(out.imu, out.heading, options.filter, options.calibrate);
+      const std::vector<std::string> refusal = inconsistencies(r);
+      refuseFor(r, refusal);
       // The gravity error the filter could estimate: the simulated magnitude minus the one it assumes.
       const CalibrationParams applied{out.applied_errors, sim.earth.gravity() - options.filter.earth.gravity()};
       RunOutcome& o = outcomes[run];
-      o = {r.estimate - toParamVector(r.layout, applied), r.sigma, r.converged, inconsistencies(r), r.passes_run};
-      // As imucal calibrate: a refused result promises nothing.
-      if (!o.refusal.empty()) o.converged.assign(o.converged.size(), false);
+      o = {r.estimate - toParamVector(r.layout, applied), r.sigma, r.converged, refusal, r.passes_run};
       if (run == 0) names = r.names;
       if (options.progress) options.progress(++done, runs);
     }

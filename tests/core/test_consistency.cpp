@@ -40,6 +40,26 @@ TEST(Consistency, HandMadeStatistics) {
   EXPECT_TRUE(inconsistencies(none).empty());
 }
 
+TEST(Consistency, ARefusedResultKeepsItsNumbersAndPromisesNothing) {
+  CalibrationResult r = withStats(390072.0, 1.0, 0);
+  r.estimate = VecX::Constant(2, 0.5);
+  r.converged = {true, true};
+  EXPECT_FALSE(refuseFor(r, {}));
+  EXPECT_EQ(r.converged, (std::vector<bool>{true, true}));
+  EXPECT_TRUE(refuseFor(r, inconsistencies(r)));
+  EXPECT_EQ(r.converged, (std::vector<bool>{false, false}));
+  EXPECT_EQ(r.estimate, VecX::Constant(2, 0.5));
+}
+
+TEST(Consistency, EveryReporterComparesHalvesAndCapsItsHistory) {
+  const CalibrateOptions plots = reportedCalibrationOptions(HistoryKept::ForPlots);
+  const CalibrateOptions memory = reportedCalibrationOptions(HistoryKept::InMemory);
+  EXPECT_TRUE(plots.check_halves);
+  EXPECT_TRUE(memory.check_halves);
+  EXPECT_EQ(plots.max_history_epochs, 20000u);
+  EXPECT_EQ(memory.max_history_epochs, 5000u);
+}
+
 TEST(Consistency, LateHeadingIsRefusedTheTrueOneIsNot) {
   sim::SimConfig sc = sim::paperScenario(5.0 * units::deg, true, 11);
   const sim::SimOutput out = sim::simulate(sc, 11);

@@ -128,8 +128,8 @@ TEST(InformationBound, SigmaHistoryNeverIncreasesWithoutProcessNoise) {
 
 TEST(InformationBound, ModelledCentreMotionLosesInformationAndMatchesTheFilter) {
   // The hand's motion as states frees the device's position and velocity (the rows' white sigmas
-  // unchanged): no bias can be known better than with them pinned. The bound's rows are written apart from the filter's; the filter's own sigmas
-  // (before any consistency inflation) on a simulation of the same motion must be what the bound says.
+  // unchanged): no bias can be known better than with them pinned. On a noisy simulation of the same
+  // motion, the calibrator's own sigmas (before any consistency inflation) must be what the bound says.
   const sim::SimOutput out = sim::simulate(sim::paperScenario(5.0 * units::deg, true, 1), 1);
   const PaperData& d = paperData();
   FilterConfig pinned = withSimulatedGravity();

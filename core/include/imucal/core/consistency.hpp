@@ -23,4 +23,16 @@ std::vector<std::string> inconsistencies(const CalibrationResult& result, const 
 // Reasons (these or any others a result was refused for) as one line, "; " between them.
 std::string joinReasons(const std::vector<std::string>& reasons);
 
+// The one policy by which every front end runs and judges a calibration it reports (the tool's result file,
+// the daemon's stored calibration, the Monte Carlo studies), so they cannot call the same data differently.
+enum class HistoryKept {
+  ForPlots,  // the tool's history CSV and plots: more epochs show nothing more
+  InMemory,  // held by a running process (the daemon's session, a study's run): a record costs 0.5 kB
+};
+// Halves compared (nothing converged whose halves disagree) and the history capped for its use.
+CalibrateOptions reportedCalibrationOptions(HistoryKept history);
+// A result refused for these reasons (none: it stands) keeps its numbers for inspection and promises
+// nothing: no parameter stays converged. Returns whether it was refused.
+bool refuseFor(CalibrationResult& result, const std::vector<std::string>& reasons);
+
 }  // namespace imucal

@@ -1,6 +1,7 @@
 #pragma once
 // Error-state Kalman filter on the loosely coupled INS model, with pseudo-observations in place of GNSS.
 // Measurements accumulate into the error state; correct() feeds it back into the nominal state and resets.
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/increment_consistency.hpp"
 #include "imucal/core/innovation_whiteness.hpp"
+#include "imucal/core/measurement_model.hpp"
 #include "imucal/core/mechanization.hpp"
 #include "imucal/core/param_vector.hpp"
 #include "imucal/core/state_layout.hpp"
@@ -103,9 +105,6 @@ class Eskf {
  private:
   void scalarSelector(int index, double innovation, double variance, double& nis);
   void scalarRow(const StateVec& h, double innovation, double variance, double& nis);
-  // The row of a pseudo-observation of the device's position (velocity) minus the centre's displacement
-  // (velocity): the nominal centre leaves the innovation, the centre's error state enters the row.
-  double updateDeviceMinusCentre(int channel, int device_index, int centre_index, double predicted, double sigma);
   // Adds the gain times innovation to the error state and tells every observer of updates.
   void applyUpdate(int channel, double y, double s);
   // A sample at its sensor's rail says only that the true value lies beyond it: the increment it adds to
@@ -113,10 +112,9 @@ class Eskf {
   void addSaturatedIncrements(const ImuSample* raw, std::size_t count);
   // Re-derives the sensor model, its inverse gains and the gravity used from params_.
   void refreshModel();
-  // Rows of the centre's position / velocity pseudo-observation for a lever arm (see lever_arm.hpp).
-  // lever_jacobian: d(centre quantity)/d(lever arm), used when the lever arm is a state.
-  double updateCentre(int channel0, const Vec3& predicted, const Mat3& att_jacobian, const Mat3* gyro_bias_jacobian,
-                      const Mat3& lever_jacobian, double sigma);
+  // A pseudo-observation of the centre (measurement_model.hpp): device is the device's velocity, or its
+  // position minus the reference, in the nominal state.
+  double updateCentre(const CentreObservation& observation, int channel0, const Vec3& device, double sigma);
 
   FilterConfig config_;
   StateLayout layout_;
@@ -134,7 +132,8 @@ class Eskf {
   StateMat prior_P_;  // P at initialize: the zero rate's gate
   StateVec dx_;
   StateVec gain_;
-  StateVec h_;
+  MeasurementRow row_;  // heading, zero rate
+  std::array<MeasurementRow, 3> centre_rows_;
   ImuSample last_raw_;
   bool feedback_ = true;
   double log_likelihood_ = 0.0;

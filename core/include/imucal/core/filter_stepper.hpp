@@ -11,6 +11,7 @@
 #include "imucal/core/free_moves.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/core/initial_alignment.hpp"
+#include "imucal/core/measurement_model.hpp"
 #include "imucal/core/types.hpp"
 #include "imucal/core/zero_rate.hpp"
 
@@ -70,11 +71,9 @@ class FilterStepper {
 
   Eskf& filter_;
   MeasurementConfig m_;
-  std::size_t per_step_;
+  StepSchedule schedule_;
   std::deque<Heading> headings_;
   std::vector<ImuSample> pending_;  // the step's samples not yet predicted over
-  std::size_t in_step_ = 0;         // samples of the current step so far
-  bool step_at_rest_ = false;       // every sample of the current step still and held
   std::size_t steps_ = 0;
   ImuSample previous_;
   bool has_previous_ = false;

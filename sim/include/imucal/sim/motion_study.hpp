@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "imucal/core/calibrator.hpp"
+#include "imucal/core/consistency.hpp"
 #include "imucal/core/filter_config.hpp"
 #include "imucal/sim/simulator.hpp"
 
@@ -21,11 +22,7 @@ struct MotionStudyOptions {
   int threads = 0;           // 0 = all cores
   FilterConfig filter;       // what calibrate runs with (noise measured on the stills unless pinned)
   FilterConfig bound_filter; // the same model told the simulation's true noise: for the bound
-  CalibrateOptions calibrate = [] {
-    CalibrateOptions o;
-    o.check_halves = true;
-    return o;
-  }();
+  CalibrateOptions calibrate = reportedCalibrationOptions(HistoryKept::InMemory);
   // Told after each finished run (from the worker threads, in any order): a study runs for minutes.
   std::function<void(std::size_t done, std::size_t total)> progress;
 };
