@@ -66,4 +66,8 @@ void GravityMagnitude::dynamicsColumns(const Linearization&, DynamicsColumns col
 
 double& LeverArmPosition::value(CalibrationParams& p, int component) const { return p.lever_arm(component); }
 
+double& GyroTimeOffset::value(CalibrationParams& p, int) const { return p.imu.gyro_time_offset; }
+
+BlockJacobian GyroTimeOffset::correctionJacobian(const Linearization& lin) const { return lin.alpha_b; }
+
 }  // namespace imucal

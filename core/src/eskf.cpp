@@ -38,6 +38,7 @@ void Eskf::initialize(const ImuSample& first_raw, const NavState& nav, const Vec
     throw std::invalid_argument("Eskf::initialize: prior mean size does not match the parameters");
   }
   last_raw_ = first_raw;
+  last_rate_change_.setZero();
   nav_ = nav;
   params_ = params;
   P_ = P0;
@@ -98,9 +99,19 @@ void Eskf::predict(const ImuSample* raw, std::size_t count) {
   if (count == 0) return;
   ImuIncrement increment;
   ImuSample a = corrected(last_raw_);
+  const Vec3 first_rate = a.gyro;
+  // The gyro's lag (GyroTimeOffset): each sample's rate moved forward by the offset along its change since
+  // the sample before.
+  const double lag = model_.imu.gyro_time_offset;
+  Vec3 previous_rate = a.gyro;
+  if (lag != 0.0) a.gyro += lag * last_rate_change_;
   for (std::size_t i = 0; i < count; ++i) {
     if (!(raw[i].t > (i == 0 ? last_raw_.t : raw[i - 1].t))) throw std::invalid_argument("Eskf::predict: time must increase");
-    const ImuSample b = corrected(raw[i]);
+    ImuSample b = corrected(raw[i]);
+    const Vec3 rate = b.gyro;
+    last_rate_change_ = (rate - previous_rate) / (b.t - a.t);
+    previous_rate = rate;
+    if (lag != 0.0) b.gyro += lag * last_rate_change_;
     increment.add(a, b);
     a = b;
   }
@@ -112,6 +123,7 @@ void Eskf::predict(const ImuSample* raw, std::size_t count) {
   lin.f_b = config_.gravity_linearization ? Vec3(-(lin.c_bn.transpose() * earth_.gravityNed()))
                                           : increment.meanSpecificForce();
   lin.w_b = increment.meanRate();
+  lin.alpha_b = (previous_rate - first_rate) / dt;
   lin.accel_gain_inv = accel_gain_inv_;
   lin.gyro_gain_inv = gyro_gain_inv_;
   if (!feedback_) {

@@ -22,6 +22,7 @@ Linearization linearizeStep(const std::vector<TrajectoryPoint>& traj, std::size_
     lin.f_b += w * (traj[k - 1].f_b + traj[k].f_b);
     lin.w_b += w * (traj[k - 1].w_b + traj[k].w_b);
   }
+  lin.alpha_b = (traj[last].w_b - traj[first].w_b) / span;
   return lin;
 }
 

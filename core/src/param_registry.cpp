@@ -50,6 +50,10 @@ std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
       // A hand turns a board about a point a few centimetres from the IMU.
       {ParamBlock::LeverArm, std::make_shared<LeverArmPosition>(), "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05,
        0.5, BlockMode::Off, BlockMode::Off, "IMU position relative to the centre of the turn, body axes", true},
+      // Low-pass filters of consumer parts delay a triad by 0-20 ms, and their settings differ per triad.
+      {ParamBlock::GyroTimeOffset, std::make_shared<GyroTimeOffset>(), "gyro_time_offset", {""}, "s", "ms", "ms",
+       1e-3, 0.01, 0.1, BlockMode::Off, BlockMode::Off,
+       "time by which the gyro's samples lag the accelerometer's (read at t: the rate at t - offset)"},
   }};
 }
 

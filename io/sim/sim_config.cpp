@@ -150,6 +150,9 @@ void readGyro(YamlSection s, ImuErrorModel& model, sim::TriadNoise& n) {
       s.number("saturation_deg_per_s", n.saturation / units::deg_per_s, Range::nonNegative()) * units::deg_per_s;
   model.gyro_g_sensitivity =
       s.matrix3("g_sensitivity_deg_per_h_per_g", model.gyro_g_sensitivity / g_sens_unit) * g_sens_unit;
+  // Positive: the gyro's samples lag the accelerometer's.
+  model.gyro_time_offset =
+      s.number("time_offset_ms", model.gyro_time_offset * 1e3, Range::between(-100.0, 100.0)) * 1e-3;
   s.finish();
 }
 

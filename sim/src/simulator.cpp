@@ -151,7 +151,10 @@ SimOutput simulate(const SimConfig& config, std::uint64_t seed) {
     errors.gyro.bias = bg;
     const Vec3 accel =
         errors.measureAccel(truth.f_b) + inv_sqrt_dt * imu.accel_noise.white.cwiseProduct(accel_white.vec3());
-    const Vec3 gyro = errors.measureGyro(truth.omega_ib_b, truth.f_b) +
+    // A gyro that lags the accelerometer reads the motion (and its specific force) of an earlier instant.
+    const double lag = imu.errors.gyro_time_offset;
+    const TruthState sensed = lag == 0.0 ? truth : motion.at(std::clamp(times[k] - lag, 0.0, motion.duration()));
+    const Vec3 gyro = errors.measureGyro(sensed.omega_ib_b, sensed.f_b) +
                       inv_sqrt_dt * imu.gyro_noise.white.cwiseProduct(gyro_white.vec3());
     out.imu.push_back({times[k], digitize(accel, imu.accel_noise), digitize(gyro, imu.gyro_noise)});
     out.truth.push_back(truth);

@@ -30,6 +30,7 @@ TEST(BlockModel, EachComponentIsTheSensorModelFieldItsNameSays) {
   modelOf(ParamBlock::GyroBias).value(p, 2) = 0.05;
   modelOf(ParamBlock::Gravity).value(p, 0) = 0.06;
   modelOf(ParamBlock::LeverArm).value(p, 0) = 0.07;
+  modelOf(ParamBlock::GyroTimeOffset).value(p, 0) = 0.008;
   EXPECT_EQ(p.imu.gyro.misalignment(2, 0), 0.01);  // row z reads the true x
   EXPECT_EQ(p.imu.accel.misalignment(2, 1), 0.02);
   EXPECT_EQ(p.imu.gyro_g_sensitivity(0, 2), 0.03);
@@ -37,6 +38,7 @@ TEST(BlockModel, EachComponentIsTheSensorModelFieldItsNameSays) {
   EXPECT_EQ(p.imu.gyro.bias.z(), 0.05);
   EXPECT_EQ(p.gravity_error, 0.06);
   EXPECT_EQ(p.lever_arm.x(), 0.07);
+  EXPECT_EQ(p.imu.gyro_time_offset, 0.008);
   // Nothing else was written.
   EXPECT_EQ(p.imu.gyro.misalignment.cwiseAbs().sum(), 0.01);
   EXPECT_EQ(p.imu.accel.bias.norm(), 0.0);
@@ -91,6 +93,27 @@ TEST(BlockModel, DynamicsColumnsRotateTheCorrectionIntoNed) {
   EXPECT_EQ(lever.cwiseAbs().sum(), 0.0);  // it enters only the pseudo-observations
 }
 
+// A rate read tau late is corrected to the reading at t + tau: for a rate changing by alpha per second the
+// corrected rate moves by alpha per second of offset error, whatever the gains.
+TEST(BlockModel, GyroTimeOffsetMovesTheRateAlongItsChange) {
+  Linearization lin;
+  lin.gyro_gain_inv = Vec3(2.0, 4.0, 0.5).asDiagonal();
+  lin.alpha_b = Vec3(0.5, 0.0, -2.0);
+  const BlockModel& offset = modelOf(ParamBlock::GyroTimeOffset);
+  EXPECT_EQ(offset.reading(), Reading::Gyro);
+  const BlockJacobian j = offset.correctionJacobian(lin);
+  ASSERT_EQ(j.cols(), 1);
+  EXPECT_EQ(j(0, 0), 0.5);
+  EXPECT_EQ(j(1, 0), 0.0);
+  EXPECT_EQ(j(2, 0), -2.0);
+  // Level, heading 0: a lag error moves the attitude error as the rate's change does, in NED.
+  Eigen::Matrix<double, 6, Eigen::Dynamic> cols = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, 1);
+  offset.dynamicsColumns(lin, cols);
+  EXPECT_EQ(cols(3, 0), 0.5);
+  EXPECT_EQ(cols(5, 0), -2.0);
+  EXPECT_EQ(cols.topRows<3>().cwiseAbs().sum(), 0.0);
+}
+
 // The sensor model's correction (what the simulator inverts) moved by a small error in one component,
 // against the block's Jacobian, for every sensor block and component.
 TEST(BlockModel, CorrectionJacobiansMatchTheSensorModelsCorrection) {
@@ -113,7 +136,8 @@ TEST(BlockModel, CorrectionJacobiansMatchTheSensorModelsCorrection) {
   lin.w_b = w0;
   const double h = 1e-6;
   for (const auto& info : paramBlocks()) {
-    if (info.model->reading() == Reading::None) continue;
+    // The time offset acts across samples, which one instant's correction cannot show (its own test below).
+    if (info.model->reading() == Reading::None || info.block == ParamBlock::GyroTimeOffset) continue;
     const BlockJacobian j = info.model->correctionJacobian(lin);
     ASSERT_EQ(j.cols(), info.size()) << info.id;
     for (int c = 0; c < info.size(); ++c) {

@@ -32,8 +32,8 @@ TEST(ParamRegistry, NamesAreUniqueAndFoundAgain) {
     }
   }
   // 3 + 3 biases, 3 + 3 scales, 3 accelerometer non-orthogonality angles, 6 gyro cross-axis terms, 9
-  // g-sensitivity terms, gravity, the lever arm.
-  EXPECT_EQ(count, 34);
+  // g-sensitivity terms, gravity, the lever arm, the gyro's time offset.
+  EXPECT_EQ(count, 35);
   EXPECT_FALSE(findParam("accel_bias").has_value());
   EXPECT_FALSE(findParam("accel_misalignment_xy").has_value());  // upper triangle: defines the body frame
   EXPECT_TRUE(findParam("gravity").has_value());
@@ -79,15 +79,15 @@ TEST(StateLayout, BlocksFollowTheRegistryContiguously) {
 }
 
 TEST(StateLayout, TheFullModelFillsTheFiltersCapacityExactly) {
-  // Position, velocity, attitude (9), the 34 parameters counted above, the centre's displacement and
+  // Position, velocity, attitude (9), the 35 parameters counted above, the centre's displacement and
   // velocity (6): the fixed-size buffers of error_dynamics.hpp hold exactly this, no more, no less.
   ModelOptions m;
   for (const auto& b : paramBlocks()) m[b.block].mode = BlockMode::Estimate;
   const StateLayout full = StateLayout::make(m, true);
-  EXPECT_EQ(full.size, 9 + 34 + 6);
+  EXPECT_EQ(full.size, 9 + 35 + 6);
   EXPECT_EQ(full.size, StateLayout::kMaxSize);
-  EXPECT_EQ(full.paramCount(), 34);
-  EXPECT_EQ(full.centre(), 9 + 34);
+  EXPECT_EQ(full.paramCount(), 35);
+  EXPECT_EQ(full.centre(), 9 + 35);
   // Every block's components as the table lists them, in the enum's order.
   for (int i = 0; i < kParamBlockCount; ++i) {
     EXPECT_EQ(static_cast<int>(paramBlocks()[static_cast<std::size_t>(i)].block), i);

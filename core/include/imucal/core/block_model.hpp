@@ -17,6 +17,7 @@ struct Linearization {
   Mat3 c_bn = Mat3::Identity();   // body to navigation
   Vec3 f_b = Vec3::Zero();        // corrected specific force, body
   Vec3 w_b = Vec3::Zero();        // corrected inertial rate, body
+  Vec3 alpha_b = Vec3::Zero();    // the corrected rate's change per second over the step, body
   // Inverse sensor matrices: corrected = gain^-1 (measured - bias [- g-sensitivity f]).
   Mat3 accel_gain_inv = Mat3::Identity();
   Mat3 gyro_gain_inv = Mat3::Identity();
@@ -87,6 +88,16 @@ class GravityMagnitude : public BlockModel {
 class LeverArmPosition : public BlockModel {
  public:
   double& value(CalibrationParams& p, int component) const override;
+};
+
+// The gyro's lag behind the accelerometer, tau: its reading at t is the rate at t - tau, so the corrected
+// rate at t is the reading at t + tau, to first order the reading plus tau times the rate's change per
+// second (the filter's correction, eskf.cpp; the simulator delays the motion itself).
+class GyroTimeOffset : public BlockModel {
+ public:
+  double& value(CalibrationParams& p, int component) const override;
+  Reading reading() const override { return Reading::Gyro; }
+  BlockJacobian correctionJacobian(const Linearization& lin) const override;
 };
 
 }  // namespace imucal

@@ -135,6 +135,7 @@ class Eskf {
   MeasurementRow row_;  // heading, zero rate
   std::array<MeasurementRow, 3> centre_rows_;
   ImuSample last_raw_;
+  Vec3 last_rate_change_ = Vec3::Zero();  // corrected rate's change per second into last_raw_
   bool feedback_ = true;
   double log_likelihood_ = 0.0;
   std::vector<Innovation>* sink_ = nullptr;

@@ -33,12 +33,16 @@ enum class ParamBlock : int {
   // Position of the IMU relative to the centre the device is turned about (body frame): the
   // pseudo-observations speak of the centre (see lever_arm.hpp).
   LeverArm,
+  // Time by which the gyro's samples lag the accelerometer's (its reading at t is the rate at t - offset):
+  // different low-pass filters on the two triads (MPU-6050 DLPF, ICM-42688-P UI filters) or a mean over the
+  // sample interval read as instantaneous.
+  GyroTimeOffset,
 };
 // Components per block, in the enum's order: the state capacity is derived from these at compile time, and
 // the table (param_registry.cpp) is checked against them when it is first built, in every build type.
-inline constexpr int kParamBlockSizes[] = {3, 3, 3, 3, 3, 6, 9, 1, 3};
+inline constexpr int kParamBlockSizes[] = {3, 3, 3, 3, 3, 6, 9, 1, 3, 1};
 constexpr int kParamBlockCount = static_cast<int>(sizeof(kParamBlockSizes) / sizeof(kParamBlockSizes[0]));
-static_assert(static_cast<int>(ParamBlock::LeverArm) == kParamBlockCount - 1,
+static_assert(static_cast<int>(ParamBlock::GyroTimeOffset) == kParamBlockCount - 1,
               "kParamBlockSizes needs one entry per ParamBlock, in the enum's order");
 // Parameters when every block is a state.
 constexpr int paramStatesOfAllBlocks() {

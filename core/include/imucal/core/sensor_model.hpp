@@ -19,6 +19,10 @@ struct ImuErrorModel {
   TriadErrors accel;
   TriadErrors gyro;
   Mat3 gyro_g_sensitivity = Mat3::Zero();  // rad/s per m/s^2 of specific force
+  // s: the gyro's reading at t is the rate (and g-sensitivity) at t - offset, the accelerometer's is at t.
+  // Not in measureGyro / correctGyro, which see one instant: the simulator samples the motion at the
+  // earlier time, the filter adds the offset times the rate's change per second (block_model.hpp).
+  double gyro_time_offset = 0.0;
 
   // Measurement from truth (no noise).
   Vec3 measureAccel(const Vec3& f_true) const { return accel.apply(f_true); }
