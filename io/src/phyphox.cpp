@@ -87,7 +87,7 @@ PhoneTriads readTriad(const RecordingFiles& files, const SetFile& f, const std::
   t.file = f.where;
   for (std::size_t r = 0; r < csv.rows(); ++r) {
     const Vec3 v(csv.at(r, 1), csv.at(r, 2), csv.at(r, 3));
-    if (!(v.cwiseAbs().maxCoeff() <= 1e6)) throwInputError(f.where, csv.lines[r], "a value beyond any phone sensor's (1e6)");
+    if (!v.allFinite() || !(v.cwiseAbs().maxCoeff() <= 1e6)) throwInputError(f.where, csv.lines[r], "a value beyond any phone sensor's (1e6)");
     if (!(std::abs(csv.at(r, 0)) < 1e9)) throwInputError(f.where, csv.lines[r], "a time beyond 1e9 s from the experiment's start");
     t.ns.push_back(std::llround(csv.at(r, 0) * 1e9));
     t.v.push_back(v);

@@ -27,9 +27,11 @@ std::uint64_t openWithMagic(std::ifstream& in, const std::string& path, std::str
 
 std::string implausible(bool imu, const Stamped& s) {
   constexpr double kMaxAccel = 1000.0 * units::kStandardGravity, kMaxGyro = 1000.0, kMaxFieldUt = 1e6;
-  if (imu && !(s.b.cwiseAbs().maxCoeff() <= kMaxAccel)) return "linear_acceleration beyond 1000 g or not a number";
-  if (imu && !(s.a.cwiseAbs().maxCoeff() <= kMaxGyro)) return "angular_velocity beyond 1000 rad/s or not a number";
-  if (!imu && !(s.a.cwiseAbs().maxCoeff() <= kMaxFieldUt)) return "magnetic_field beyond 1 T or not a number";
+  // Finite first: Eigen's maxCoeff may step over a NaN, and a comparison with NaN is false either way.
+  const auto within = [](const Vec3& v, double limit) { return v.allFinite() && v.cwiseAbs().maxCoeff() <= limit; };
+  if (imu && !within(s.b, kMaxAccel)) return "linear_acceleration beyond 1000 g or not a number";
+  if (imu && !within(s.a, kMaxGyro)) return "angular_velocity beyond 1000 rad/s or not a number";
+  if (!imu && !within(s.a, kMaxFieldUt)) return "magnetic_field beyond 1 T or not a number";
   return "";
 }
 

@@ -79,5 +79,18 @@ TEST(Rosbag2, ADatabaseThatIsNotABagOrIsCutIsRefusedByFile) {
   EXPECT_CONTAINS(inputErrorOf([&] { readRosbag2Db3(kSource + "imu.csv"); }), "not a rosbag2 sqlite3 file");
 }
 
+// Found by fuzz_rosbag2_db3: the fifth IMU message's linear_acceleration.y is NaN between finite x and z,
+// which a maximum over |values| stepped over; it reached the calibration as a sample.
+TEST(Rosbag2, ANotANumberBetweenFiniteValuesIsRefusedNamingTheField) {
+  const std::string path = std::string(IMUCAL_TEST_DATA_DIR) + "/hostile/rosbag2_imu_accel_y_nan.db3";
+  for (const char* topic : {"", "/imu/data"}) {
+    TopicChoice choice;
+    choice.imu_topic = topic;
+    const std::string e = inputErrorOf([&] { readRosbag2Db3(path, choice); });
+    EXPECT_CONTAINS(e, path);
+    EXPECT_CONTAINS(e, "linear_acceleration beyond 1000 g or not a number");
+  }
+}
+
 }  // namespace
 }  // namespace imucal::io

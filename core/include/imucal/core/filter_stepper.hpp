@@ -76,7 +76,6 @@ class FilterStepper {
   std::vector<ImuSample> pending_;  // the step's samples not yet predicted over
   std::size_t steps_ = 0;
   ImuSample previous_;
-  bool has_previous_ = false;
   double step_start_ = 0.0;  // filter time at the current step's start
   double heading_nis_sum_ = 0.0, velocity_nis_sum_ = 0.0, position_nis_sum_ = 0.0, zero_rate_nis_sum_ = 0.0;
   StillRunMean still_run_;
