@@ -4,7 +4,6 @@
 #include <stdexcept>
 
 #include "imucal/core/imu_increment.hpp"
-#include "imucal/core/lever_arm.hpp"
 #include "imucal/core/rotation.hpp"
 
 namespace imucal {

@@ -1,8 +1,5 @@
 #include "imucal/core/filter_stepper.hpp"
 
-#include <algorithm>
-#include <cmath>
-
 #include "imucal/core/lever_arm.hpp"
 #include "imucal/core/mechanization.hpp"
 
