@@ -11,7 +11,6 @@
 #include "imucal/core/diagnose.hpp"
 #include "imucal/io/atomic_file.hpp"
 #include "imucal/io/diagnosis_report.hpp"
-#include "imucal/io/effect_units.hpp"
 #include "imucal/io/json_output.hpp"
 
 namespace imucal::cli {
@@ -32,7 +31,7 @@ struct DiagnoseArgs {
 void printSteps(const Diagnosis& d) {
   if (d.steps.empty()) std::cout << "nothing significant: the model explains the data\n";
   for (const auto& s : d.steps) {
-    const io::ParamUnit u = io::effectUnit(s.effect.id);
+    const HumanUnit& u = s.effect.unit;
     std::cout << std::left << std::setw(24) << s.effect.id << std::right;
     for (Eigen::Index i = 0; i < s.effect.value.size(); ++i) {
       const bool observable = static_cast<std::size_t>(i) < s.effect.observable.size() && s.effect.observable[static_cast<std::size_t>(i)];

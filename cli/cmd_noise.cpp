@@ -12,6 +12,7 @@
 #include "recording_input.hpp"
 #include "imucal/core/allan.hpp"
 #include "imucal/core/allan_bootstrap.hpp"
+#include "imucal/core/human_unit.hpp"
 #include "imucal/core/static_detector.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/atomic_file.hpp"
@@ -33,22 +34,18 @@ struct NoiseArgs {
   int draws = 100;
 };
 
-// Human units of the terms, per sensor.
-struct TermUnits {
+// The terms as this command's JSON names them, in the noise terms' units (human_unit.hpp).
+struct TermColumn {
   const char* name;
+  NoiseTerm term;
   double NoiseTerms::*member;
-  double gyro_factor;
-  const char* gyro_unit;
-  double accel_factor;
-  const char* accel_unit;
   std::size_t mask_index;  // in NoiseTermMask
 };
-const TermUnits kTerms[] = {
-    {"white_noise", &NoiseTerms::white, units::deg_per_sqrt_h, "deg/sqrt(h)", units::micro_g, "ug/sqrt(Hz)", 1},
-    {"bias_instability", &NoiseTerms::bias_instability, units::deg_per_h, "deg/h", units::micro_g, "ug", 2},
-    {"random_walk", &NoiseTerms::random_walk, units::deg_per_h_per_sqrt_h, "deg/h/sqrt(h)", units::micro_g_per_sqrt_h,
-     "ug/sqrt(h)", 3},
-    {"quantization", &NoiseTerms::quantization, units::deg, "deg", 1.0, "m/s", 0},
+const TermColumn kTerms[] = {
+    {"white_noise", NoiseTerm::White, &NoiseTerms::white, 1},
+    {"bias_instability", NoiseTerm::BiasInstability, &NoiseTerms::bias_instability, 2},
+    {"random_walk", NoiseTerm::RandomWalk, &NoiseTerms::random_walk, 3},
+    {"quantization", NoiseTerm::Quantization, &NoiseTerms::quantization, 0},
 };
 
 constexpr int kColumn = 32;
@@ -111,8 +108,10 @@ std::string plotSvg(const std::array<ChannelNoise, 6>& c) {
     io::PlotSpec spec;
     spec.log_x = spec.log_y = true;
     spec.x_label = "tau (s)";
-    spec.y_label = gyro ? "Allan deviation (deg/h)" : "Allan deviation (ug)";
-    const double factor = gyro ? units::deg_per_h : units::micro_g;
+    // An Allan deviation is a bias's unit: the bias instability's.
+    const HumanUnit& adev = noiseUnit(gyro, NoiseTerm::BiasInstability);
+    spec.y_label = "Allan deviation (" + adev.human + ")";
+    const double factor = adev.factor;
     for (int i = 0; i < 3; ++i) {
       const ChannelNoise& n = c[static_cast<std::size_t>((gyro ? 3 : 0) + i)];
       io::PlotSeries data, model;
@@ -171,7 +170,7 @@ void runNoiseCommand(const NoiseArgs& args) {
   const double g_norm = config.filter.earth.gravity();
   nlohmann::json channels = nlohmann::json::object();
   std::cout << std::left << std::setw(9) << "axis";
-  for (const TermUnits& t : kTerms) std::cout << std::setw(kColumn) << t.name;
+  for (const TermColumn& t : kTerms) std::cout << std::setw(kColumn) << t.name;
   std::cout << '\n';
   for (std::size_t ch = 0; ch < 6; ++ch) {
     const bool gyro = ch >= 3;
@@ -188,9 +187,9 @@ void runNoiseCommand(const NoiseArgs& args) {
     }
     nlohmann::json terms = nlohmann::json::object();
     std::cout << std::setw(9) << kChannels[ch];
-    for (const TermUnits& t : kTerms) {
-      const double factor = gyro ? t.gyro_factor : t.accel_factor;
-      const char* unit = gyro ? t.gyro_unit : t.accel_unit;
+    for (const TermColumn& t : kTerms) {
+      const double factor = noiseUnit(gyro, t.term).factor;
+      const std::string& unit = noiseUnit(gyro, t.term).human;
       const double v = c[ch].fit.value.*(t.member), s = c[ch].fit.sigma.*(t.member), u = c[ch].fit.upper.*(t.member);
       const bool kept = c[ch].kept[t.mask_index];
       terms[t.name] = {{"value", v / factor}, {"sigma", s / factor}, {"upper", u / factor}, {"unit", unit},

@@ -39,7 +39,7 @@ def main(path):
         "imu:",
         "  rate_hz: 100",
         "  accel:",
-        "    bias_mg: [45, -42, 48]",
+        "    bias_ug: [45000, -42000, 48000]",
         "    scale_ppm: [15000, -20000, 10000]",
         "    # Lower triangle only: the body frame is the accelerometer's (x on its x axis, y in its x-y plane).",
         "    misalignment_mrad: [0, 0, 12, 0, -17.5, 9]",
@@ -49,7 +49,7 @@ def main(path):
         "    scale_ppm: [-12000, 20000, 8000]",
         "    misalignment_mrad: [17.5, -10, 8, 15, -12, 6]",
         "    arw_deg_per_sqrt_h: 0.3",
-        "    g_sensitivity_deg_per_h_per_g: [[360, -200, 150], [120, -360, 250], [-180, 300, 360]]",
+        "    g_sensitivity_deg_per_s_per_g: [[0.1, -0.0555556, 0.0416667], [0.0333333, -0.1, 0.0694444], [-0.05, 0.0833333, 0.1]]",
         "heading:",
         "  enabled: false",
     ]

@@ -60,14 +60,44 @@ BlockJacobian MatrixTerms::correctionJacobian(const Linearization& lin) const {
   return blockJacobian(block_, lin.gyro_gain_inv, lin.f_b);
 }
 
+std::string TriadBias::revealedBy(int) const {
+  return reading_ == Reading::Gyro ? "a still stretch (the gyro's reading at rest)" : "still poses with each axis up and down";
+}
+
+std::string MatrixTerms::revealedBy(int component) const {
+  const auto [row, col] = matrixIndex({block_, component});
+  const int axis = row < 0 ? component : col;  // the input the term multiplies
+  const std::string name(1, static_cast<char>('x' + axis));
+  switch (matrix_) {
+    case Matrix::GyroGain:
+      return axis == 2 && row < 0 ? "a turn about z (any rate change on z)" : "a turn about " + name;
+    case Matrix::AccelGain:
+      return (axis == 2 ? "a flip so z" : "a tilt so " + name) + " sees +g and -g";
+    case Matrix::GyroGSensitivity: break;
+  }
+  return axis == 2 ? "a flip so z sees +g and -g" : "a tilt so " + name + " sees +g and -g";
+}
+
 double& GravityMagnitude::value(CalibrationParams& p, int) const { return p.gravity_error; }
 
 void GravityMagnitude::dynamicsColumns(const Linearization&, DynamicsColumns cols) const { cols(2, 0) = 1.0; }
 
+std::string GravityMagnitude::revealedBy(int) const {
+  return "the latitude and height, or a measured value (a still accelerometer reads it only with its scale)";
+}
+
 double& LeverArmPosition::value(CalibrationParams& p, int component) const { return p.lever_arm(component); }
+
+std::string LeverArmPosition::revealedBy(int) const {
+  return "a turn about a horizontal axis (x or y) for the component along the turn axis";
+}
 
 double& GyroTimeOffset::value(CalibrationParams& p, int) const { return p.imu.gyro_time_offset; }
 
 BlockJacobian GyroTimeOffset::correctionJacobian(const Linearization& lin) const { return lin.alpha_b; }
+
+std::string GyroTimeOffset::revealedBy(int) const {
+  return "turns that start and stop briskly about a horizontal axis (or about z with heading)";
+}
 
 }  // namespace imucal

@@ -79,6 +79,7 @@ bool plausible(const Effect& e, const EffectTest& t) {
 EffectTest blankTest(const Effect& e) {
   EffectTest t;
   t.id = e.id;
+  t.unit = e.unit;
   t.components = e.components;
   t.dof = 0;
   t.reveals = e.reveals;

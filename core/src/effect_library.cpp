@@ -1,96 +1,112 @@
 #include "imucal/core/effect_library.hpp"
 
+#include <algorithm>
+
+#include "imucal/core/block_model.hpp"
+#include "imucal/core/param_vector.hpp"
 #include "imucal/core/units.hpp"
 
 namespace imucal {
 
 namespace {
 
-const char* const kAxes[] = {"x", "y", "z"};
-
 VecX scalar(double v) { return VecX::Constant(1, v); }
 
-Effect scale(const std::string& sensor, int axis) {
-  const bool gyro = sensor == "gyro";
+// Where a hypothesis holds a block's value: a term one sample determines is removed from the data before
+// the filter runs (SensorHypothesis::known); any other is the filter's own value for the block, which it
+// applies while the block is not a state.
+double getValue(const SensorHypothesis& h, const ParamRef& ref) {
+  const ParamBlockInfo& info = ref.info();
+  if (!info.model->correctsEachSample()) return h.filter.model.mean(ref);
+  CalibrationParams p;
+  p.imu = h.known;
+  return info.model->value(p, ref.component);
+}
+
+void setValue(SensorHypothesis& h, const ParamRef& ref, double v) {
+  const ParamBlockInfo& info = ref.info();
+  if (!info.model->correctsEachSample()) {
+    h.filter.model.setMean(ref, v);
+    return;
+  }
+  CalibrationParams p;
+  p.imu = h.known;
+  info.model->value(p, ref.component) = v;
+  h.known = p.imu;
+}
+
+Effect blockEffect(const ParamBlockInfo& info, const std::vector<int>& components) {
+  const bool whole = info.diagnose.tested == DiagnoseSpec::Tested::WholeBlock;
   Effect e;
-  e.id = sensor + "_scale_" + kAxes[axis];
-  e.components = {""};
-  e.step = 0.005;
-  e.plausible = 0.03;
-  e.reveals = axis == 2 ? (gyro ? "a turn about z (any rate change on z)" : "a flip so z sees +g and -g")
-                        : (gyro ? std::string("a turn about ") + kAxes[axis] : std::string("a tilt so ") + kAxes[axis] + " sees +g and -g");
-  e.get = [gyro, axis](const SensorHypothesis& h) { return scalar((gyro ? h.known.gyro : h.known.accel).scale(axis)); };
-  e.set = [gyro, axis](SensorHypothesis& h, const VecX& v) { (gyro ? h.known.gyro : h.known.accel).scale(axis) = v(0); };
-  e.estimated_by_filter = [gyro](const FilterConfig& f) {
-    return f.model.estimates(gyro ? ParamBlock::GyroScale : ParamBlock::AccelScale);
+  e.id = whole ? info.id : info.paramName(components.front());
+  e.unit = info.unit();
+  for (int c : components) e.components.push_back(whole ? info.components[static_cast<std::size_t>(c)] : "");
+  e.step = info.diagnose.step;
+  e.plausible = info.diagnose.plausible;
+  e.reveals = info.model->revealedBy(components.front());
+  const ParamBlock block = info.block;
+  e.get = [block, components](const SensorHypothesis& h) {
+    VecX v(static_cast<Eigen::Index>(components.size()));
+    for (std::size_t i = 0; i < components.size(); ++i) v(static_cast<Eigen::Index>(i)) = getValue(h, {block, components[i]});
+    return v;
   };
+  e.set = [block, components](SensorHypothesis& h, const VecX& v) {
+    for (std::size_t i = 0; i < components.size(); ++i) setValue(h, {block, components[i]}, v(static_cast<Eigen::Index>(i)));
+  };
+  e.estimated_by_filter = [block](const FilterConfig& f) { return f.model.mode(block) != BlockMode::Off; };
   return e;
 }
 
-// Cross-axis term: axis `row` senses `col`'s input.
-Effect misalignment(const std::string& sensor, int row, int col) {
-  const bool gyro = sensor == "gyro";
-  Effect e;
-  e.id = sensor + "_misalignment_" + kAxes[row] + kAxes[col];
-  e.components = {""};
-  e.step = 2e-3;
-  e.plausible = 0.03;
-  e.reveals = gyro ? std::string("a turn about ") + kAxes[col] : std::string("a tilt so ") + kAxes[col] + " sees +g and -g";
-  e.get = [gyro, row, col](const SensorHypothesis& h) {
-    return scalar((gyro ? h.known.gyro : h.known.accel).misalignment(row, col));
-  };
-  e.set = [gyro, row, col](SensorHypothesis& h, const VecX& v) {
-    (gyro ? h.known.gyro : h.known.accel).misalignment(row, col) = v(0);
-  };
-  return e;
+std::vector<Effect> registryEffects() {
+  std::vector<Effect> out;
+  for (const ParamBlockInfo& info : paramBlocks()) {
+    const DiagnoseSpec& spec = info.diagnose;
+    std::vector<int> tested;
+    for (int c = 0; c < info.size(); ++c) {
+      const std::string& name = info.components[static_cast<std::size_t>(c)];
+      if (spec.components.empty() ||
+          std::find(spec.components.begin(), spec.components.end(), name) != spec.components.end())
+        tested.push_back(c);
+    }
+    switch (spec.tested) {
+      case DiagnoseSpec::Tested::No: break;
+      case DiagnoseSpec::Tested::WholeBlock: out.push_back(blockEffect(info, tested)); break;
+      case DiagnoseSpec::Tested::EachComponent:
+        for (int c : tested) out.push_back(blockEffect(info, {c}));
+        break;
+    }
+  }
+  return out;
 }
 
-Effect gSensitivity(int axis) {
-  // Column of the z specific force: the only one a level device exercises (and there it is a constant,
-  // the same as a bias).
+Effect biasDrift(bool gyro) {
   Effect e;
-  e.id = std::string("gyro_g_sensitivity_") + kAxes[axis] + "z";
+  e.id = std::string(gyro ? "gyro_" : "accel_") + noiseTermId(NoiseTerm::RandomWalk);
+  e.kind = EffectKind::ProcessNoise;
+  e.unit = noiseUnit(gyro, NoiseTerm::RandomWalk);
   e.components = {""};
-  e.step = 1e-4;
-  e.plausible = 1e-3;
-  e.reveals = "a flip so z sees +g and -g (or a tilt, for the x and y columns)";
-  e.get = [axis](const SensorHypothesis& h) { return scalar(h.known.gyro_g_sensitivity(axis, 2)); };
-  e.set = [axis](SensorHypothesis& h, const VecX& v) { h.known.gyro_g_sensitivity(axis, 2) = v(0); };
+  // The grid's smallest density and the largest a consumer part drifts, SI.
+  e.step = gyro ? 1.0 * units::deg_per_h : 10.0 * units::micro_g;
+  e.plausible = gyro ? 1e3 * units::deg_per_h : 1e4 * units::micro_g;
+  e.reveals = "a longer recording (the drift grows with sqrt(time))";
+  e.get = [gyro](const SensorHypothesis& h) {
+    return scalar(gyro ? h.filter.noise.gyro_bias_walk : h.filter.noise.accel_bias_walk);
+  };
+  e.set = [gyro](SensorHypothesis& h, const VecX& v) {
+    (gyro ? h.filter.noise.gyro_bias_walk : h.filter.noise.accel_bias_walk) = v(0);
+    (gyro ? h.gyro_noise : h.accel_noise).random_walk = v(0);
+  };
   return e;
 }
 
 }  // namespace
 
 std::vector<Effect> effectLibrary() {
-  std::vector<Effect> lib;
-  {
-    Effect e;
-    e.id = "lever_arm";
-    e.components = {"x", "y", "z"};
-    e.step = 0.03;
-    e.plausible = 0.1;
-    e.reveals = "a turn about a horizontal axis (x or y) for the component along the turn axis";
-    e.estimated_by_filter = [](const FilterConfig& f) { return f.model.mode(ParamBlock::LeverArm) != BlockMode::Off; };
-    e.get = [](const SensorHypothesis& h) {
-      VecX r(3);
-      for (int i = 0; i < 3; ++i) r(i) = h.filter.model.mean({ParamBlock::LeverArm, i});
-      return r;
-    };
-    e.set = [](SensorHypothesis& h, const VecX& v) {
-      for (int i = 0; i < 3; ++i) h.filter.model.setMean({ParamBlock::LeverArm, i}, v(i));
-    };
-    lib.push_back(e);
-  }
-  for (const char* sensor : {"gyro", "accel"})
-    for (int i = 0; i < 3; ++i) lib.push_back(scale(sensor, i));
-  for (const char* sensor : {"gyro", "accel"})
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        if (r != c) lib.push_back(misalignment(sensor, r, c));
-  for (int i = 0; i < 3; ++i) lib.push_back(gSensitivity(i));
+  std::vector<Effect> lib = registryEffects();
   {
     Effect e;
     e.id = "heading_latency";
+    e.unit = {"ms", "ms", "s", 1e-3};
     e.components = {""};
     e.step = 0.02;
     e.plausible = 0.2;
@@ -102,6 +118,7 @@ std::vector<Effect> effectLibrary() {
   {
     Effect e;
     e.id = "heading_bias";
+    e.unit = {"deg", "deg", "rad", units::deg};
     e.components = {""};
     e.step = 2.0 * units::deg;
     e.plausible = 10.0 * units::deg;
@@ -110,36 +127,8 @@ std::vector<Effect> effectLibrary() {
     e.set = [](SensorHypothesis& h, const VecX& v) { h.filter.measurements.heading_bias = v(0); };
     lib.push_back(e);
   }
-  {
-    Effect e;
-    e.id = "gyro_bias_drift";
-    e.kind = EffectKind::ProcessNoise;
-    e.components = {""};
-    e.step = 1.0 * units::deg_per_h;  // rad/s/sqrt(s): the smallest density of the grid
-    e.plausible = 1e3 * units::deg_per_h;
-    e.reveals = "a longer recording (the drift grows with sqrt(time))";
-    e.get = [](const SensorHypothesis& h) { return scalar(h.filter.noise.gyro_bias_walk); };
-    e.set = [](SensorHypothesis& h, const VecX& v) {
-      h.filter.noise.gyro_bias_walk = v(0);
-      h.gyro_noise.random_walk = v(0);
-    };
-    lib.push_back(e);
-  }
-  {
-    Effect e;
-    e.id = "accel_bias_drift";
-    e.kind = EffectKind::ProcessNoise;
-    e.components = {""};
-    e.step = 10.0 * units::micro_g;  // m/s^2/sqrt(s)
-    e.plausible = 1e4 * units::micro_g;
-    e.reveals = "a longer recording (the drift grows with sqrt(time))";
-    e.get = [](const SensorHypothesis& h) { return scalar(h.filter.noise.accel_bias_walk); };
-    e.set = [](SensorHypothesis& h, const VecX& v) {
-      h.filter.noise.accel_bias_walk = v(0);
-      h.accel_noise.random_walk = v(0);
-    };
-    lib.push_back(e);
-  }
+  lib.push_back(biasDrift(true));
+  lib.push_back(biasDrift(false));
   return lib;
 }
 

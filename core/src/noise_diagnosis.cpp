@@ -19,13 +19,13 @@ constexpr double kMaterial = 0.1;
 constexpr int kNoiseDraws = 50;
 
 struct Term {
-  const char* suffix;
+  NoiseTerm term;
   double NoiseTerms::*member;
 };
-const Term kTerms[] = {{"white_noise", &NoiseTerms::white},
-                       {"bias_instability", &NoiseTerms::bias_instability},
-                       {"bias_drift", &NoiseTerms::random_walk},
-                       {"quantization", &NoiseTerms::quantization}};
+const Term kTerms[] = {{NoiseTerm::White, &NoiseTerms::white},
+                       {NoiseTerm::BiasInstability, &NoiseTerms::bias_instability},
+                       {NoiseTerm::RandomWalk, &NoiseTerms::random_walk},
+                       {NoiseTerm::Quantization, &NoiseTerms::quantization}};
 
 double misfitRatio(const std::vector<AllanCurve>& curves, const std::string& sensor, bool after) {
   double misfit = 0.0;
@@ -92,7 +92,8 @@ void diagnoseNoise(const std::vector<ImuSample>& imu, const std::vector<bool>& s
       const double value = fit.value.*term.member, sigma = fit.sigma.*term.member;
       const double current = before.*term.member;
       EffectTest t;
-      t.id = sensor + "_" + term.suffix;
+      t.id = sensor + "_" + noiseTermId(term.term);
+      t.unit = noiseUnit(gyro, term.term);
       t.components = {""};
       t.value = VecX::Constant(1, value);
       t.sigma = VecX::Constant(1, sigma > 0.0 ? sigma : std::numeric_limits<double>::quiet_NaN());

@@ -1,5 +1,6 @@
 #include "imucal/core/param_registry.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "imucal/core/block_model.hpp"
@@ -22,37 +23,42 @@ std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
   // +-150 mg and +-5 deg/s, sensitivity +-3 %, cross-axis +-2 %, g-sensitivity up to 0.1 deg/s/g).
   // Plausible: beyond any such part, even read as raw counts with a sensitivity 30 % off.
   using M = MatrixTerms::Matrix;
+  const DiagnoseSpec::Tested Each = DiagnoseSpec::Tested::EachComponent;
   return {{
       {ParamBlock::AccelBias, std::make_shared<TriadBias>(Reading::Accelerometer), "accel_bias", xyz, "m/s^2",
        "ug", "ug", micro_g, 0.1 * kStandardGravity, 0.5 * kStandardGravity, BlockMode::Estimate,
-       BlockMode::Estimate, "accelerometer offset"},
+       BlockMode::Estimate, {}, "accelerometer offset"},
       {ParamBlock::GyroBias, std::make_shared<TriadBias>(Reading::Gyro), "gyro_bias", xyz, "rad/s", "deg/h",
-       "deg_per_h", deg_per_h, 1.0 * deg_per_s, 30.0 * deg_per_s, BlockMode::Estimate, BlockMode::Estimate,
+       "deg_per_h", deg_per_h, 1.0 * deg_per_s, 30.0 * deg_per_s, BlockMode::Estimate, BlockMode::Estimate, {},
        "gyro offset"},
       {ParamBlock::AccelScale, terms(ParamBlock::AccelScale, M::AccelGain), "accel_scale", xyz, "1", "ppm", "ppm",
-       ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate, "accelerometer scale factor error (sensitivity ratio - 1)"},
+       ppm, 0.02, 0.3, BlockMode::Off, BlockMode::Estimate, {Each, 0.005, 0.03, {}},
+       "accelerometer scale factor error (sensitivity ratio - 1)"},
       {ParamBlock::GyroScale, terms(ParamBlock::GyroScale, M::GyroGain), "gyro_scale", xyz, "1", "ppm", "ppm", ppm,
-       0.02, 0.3, BlockMode::Off, BlockMode::Estimate, "gyro scale factor error (sensitivity ratio - 1)"},
+       0.02, 0.3, BlockMode::Off, BlockMode::Estimate, {Each, 0.005, 0.03, {}},
+       "gyro scale factor error (sensitivity ratio - 1)"},
       {ParamBlock::AccelMisalignment, terms(ParamBlock::AccelMisalignment, M::AccelGain), "accel_misalignment",
        {"yx", "zx", "zy"}, "rad", "mrad", "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off, BlockMode::Estimate,
-       "accelerometer non-orthogonality (lower triangle)"},
+       {Each, 2e-3, 0.03, {}}, "accelerometer non-orthogonality (lower triangle)"},
       {ParamBlock::GyroMisalignment, terms(ParamBlock::GyroMisalignment, M::GyroGain), "gyro_misalignment",
        {"xy", "xz", "yx", "yz", "zx", "zy"}, "rad", "mrad", "mrad", mrad, 1.0 * deg, 5.0 * deg, BlockMode::Off,
-       BlockMode::Estimate, "gyro cross-axis terms relative to the accelerometer's axes"},
+       BlockMode::Estimate, {Each, 2e-3, 0.03, {}}, "gyro cross-axis terms relative to the accelerometer's axes"},
       {ParamBlock::GyroGSensitivity, terms(ParamBlock::GyroGSensitivity, M::GyroGSensitivity), "gyro_g_sensitivity",
        {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"}, "rad/s/(m/s^2)", "deg/s/g", "deg_per_s_per_g",
        deg_per_s_per_g, 0.1 * deg_per_s_per_g, 2.0 * deg_per_s_per_g, BlockMode::Off, BlockMode::Estimate,
-       "gyro rate per specific force (linear acceleration sensitivity)"},
+       // Diagnose tests the column of the z specific force: the only one a level device exercises.
+       {Each, 1e-4, 1e-3, {"xz", "yz", "zz"}}, "gyro rate per specific force (linear acceleration sensitivity)"},
       // Normal gravity runs from 9.780 (equator) to 9.832 m/s^2 (poles): a 1-sigma of a quarter of that
       // span puts the whole range within 2 sigma of the standard value.
       {ParamBlock::Gravity, std::make_shared<GravityMagnitude>(), "gravity", {""}, "m/s^2", "ug", "ug", micro_g,
-       0.013, 0.06, BlockMode::Off, BlockMode::Off, "gravity magnitude minus the one assumed"},
+       0.013, 0.06, BlockMode::Off, BlockMode::Off, {}, "gravity magnitude minus the one assumed"},
       // A hand turns a board about a point a few centimetres from the IMU.
       {ParamBlock::LeverArm, std::make_shared<LeverArmPosition>(), "lever_arm", xyz, "m", "cm", "cm", 0.01, 0.05,
-       0.5, BlockMode::Off, BlockMode::Off, "IMU position relative to the centre of the turn, body axes", true},
+       0.5, BlockMode::Off, BlockMode::Off, {DiagnoseSpec::Tested::WholeBlock, 0.03, 0.1, {}},
+       "IMU position relative to the centre of the turn, body axes", true},
       // Low-pass filters of consumer parts delay a triad by 0-20 ms, and their settings differ per triad.
       {ParamBlock::GyroTimeOffset, std::make_shared<GyroTimeOffset>(), "gyro_time_offset", {""}, "s", "ms", "ms",
-       1e-3, 0.01, 0.1, BlockMode::Off, BlockMode::Off,
+       1e-3, 0.01, 0.1, BlockMode::Off, BlockMode::Off, {},
        "time by which the gyro's samples lag the accelerometer's (read at t: the rate at t - offset)"},
   }};
 }
@@ -70,6 +76,12 @@ std::array<ParamBlockInfo, kParamBlockCount> checkedTable() {
     if (row.size() != kParamBlockSizes[i])
       throw std::logic_error("parameter registry: " + row.id + " has " + std::to_string(row.size()) +
                              " components, kParamBlockSizes says " + std::to_string(kParamBlockSizes[i]));
+    const DiagnoseSpec& d = row.diagnose;
+    if (d.tested != DiagnoseSpec::Tested::No && !(d.step > 0.0 && d.plausible > d.step))
+      throw std::logic_error("parameter registry: " + row.id + "'s diagnose step and plausible size must be 0 < step < plausible");
+    for (const std::string& c : d.components)
+      if (std::find(row.components.begin(), row.components.end(), c) == row.components.end())
+        throw std::logic_error("parameter registry: " + row.id + " has no component '" + c + "' for diagnose to test");
   }
   return table;
 }

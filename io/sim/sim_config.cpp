@@ -1,5 +1,6 @@
 #include <cmath>
 
+#include "imucal/core/param_registry.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/sim_formats.hpp"
 #include "imucal/io/config_sections.hpp"
@@ -109,20 +110,45 @@ Range accelSaturationRange() {
   return {[](double v) { return v == 0.0 || v > 1.0; }, "must be 0 (none) or more than 1 g"};
 }
 
+// Keys renamed when the simulator took the units calibrate reports in: a value under the old key is in
+// another unit, so it is refused with the conversion rather than matched to the new key by its spelling.
+void refuseRenamed(YamlSection& s, const std::string& old_key, const std::string& new_key, const std::string& unit,
+                   const std::string& conversion) {
+  if (s.has(old_key)) s.fail(old_key, "renamed " + new_key + " (" + unit + ", as calibrate reports it): " + conversion);
+}
+
+double unitOf(ParamBlock block) { return blockInfo(block).si_per_human; }
+
+// Scale (ppm) and misalignment (mrad, any off-diagonal term: the simulator may rotate a triad).
+void readGain(YamlSection& s, ParamBlock scale, ParamBlock misalignment, TriadErrors& e) {
+  const double k = unitOf(scale), m = unitOf(misalignment);
+  e.scale = s.vector3(simKey(scale), e.scale / k, true, Range::between(-0.5 / k, 0.5 / k)) * k;
+  e.misalignment = s.offDiagonal3(simKey(misalignment), e.misalignment / m) * m;
+}
+
+// vrw/arw, bias_instability, bias_correlation_s, bias_random_walk in the noise terms' units.
+void readNoise(YamlSection& s, bool gyro, sim::TriadNoise& n) {
+  const auto read = [&](const std::string& name, NoiseTerm term, const Vec3& value) -> Vec3 {
+    const HumanUnit& u = noiseUnit(gyro, term);
+    return s.vector3(name + u.suffix, value / u.factor, true, Range::nonNegative()) * u.factor;
+  };
+  n.white = read(gyro ? "arw_" : "vrw_", NoiseTerm::White, n.white);
+  n.bias_instability = read("bias_instability_", NoiseTerm::BiasInstability, n.bias_instability);
+  n.bias_correlation_time = s.number("bias_correlation_s", n.bias_correlation_time, Range::positive());
+  if (!gyro) {
+    const HumanUnit& u = noiseUnit(gyro, NoiseTerm::RandomWalk);
+    refuseRenamed(s, "bias_random_walk_ug_per_sqrt_s", "bias_random_walk_" + u.suffix, u.human, "multiply the values by 60");
+  }
+  n.bias_random_walk = read("bias_random_walk_", NoiseTerm::RandomWalk, n.bias_random_walk);
+}
+
 void readAccel(YamlSection s, TriadErrors& e, sim::TriadNoise& n) {
   const double g = units::kStandardGravity;
-  const Range scale_range = Range::between(-5e5, 5e5);
-  e.bias = s.vector3("bias_mg", e.bias / units::milli_g, true) * units::milli_g;
-  e.scale = s.vector3("scale_ppm", e.scale / units::ppm, true, scale_range) * units::ppm;
-  e.misalignment = s.offDiagonal3("misalignment_mrad", e.misalignment * 1e3) * 1e-3;
-  n.white = s.vector3("vrw_m_per_s_per_sqrt_h", n.white / units::m_per_s_per_sqrt_h, true, Range::nonNegative()) *
-            units::m_per_s_per_sqrt_h;
-  n.bias_instability =
-      s.vector3("bias_instability_ug", n.bias_instability / units::micro_g, true, Range::nonNegative()) * units::micro_g;
-  n.bias_correlation_time = s.number("bias_correlation_s", n.bias_correlation_time, Range::positive());
-  n.bias_random_walk =
-      s.vector3("bias_random_walk_ug_per_sqrt_s", n.bias_random_walk / units::micro_g, true, Range::nonNegative()) *
-      units::micro_g;
+  refuseRenamed(s, "bias_mg", simKey(ParamBlock::AccelBias), blockInfo(ParamBlock::AccelBias).human_unit,
+                "multiply the values by 1000");
+  e.bias = s.vector3(simKey(ParamBlock::AccelBias), e.bias / unitOf(ParamBlock::AccelBias), true) * unitOf(ParamBlock::AccelBias);
+  readGain(s, ParamBlock::AccelScale, ParamBlock::AccelMisalignment, e);
+  readNoise(s, false, n);
   n.quantization = s.number("quantization_mg", n.quantization / units::milli_g, Range::nonNegative()) * units::milli_g;
   n.saturation = s.number("saturation_g", n.saturation / g, accelSaturationRange()) * g;
   s.finish();
@@ -130,29 +156,22 @@ void readAccel(YamlSection s, TriadErrors& e, sim::TriadNoise& n) {
 
 void readGyro(YamlSection s, ImuErrorModel& model, sim::TriadNoise& n) {
   TriadErrors& e = model.gyro;
-  const Range scale_range = Range::between(-5e5, 5e5);
-  const double g_sens_unit = units::deg_per_h / units::kStandardGravity;  // rad/s per m/s^2 per (deg/h/g)
-  e.bias = s.vector3("bias_deg_per_h", e.bias / units::deg_per_h, true) * units::deg_per_h;
-  e.scale = s.vector3("scale_ppm", e.scale / units::ppm, true, scale_range) * units::ppm;
-  e.misalignment = s.offDiagonal3("misalignment_mrad", e.misalignment * 1e3) * 1e-3;
-  n.white = s.vector3("arw_deg_per_sqrt_h", n.white / units::deg_per_sqrt_h, true, Range::nonNegative()) *
-            units::deg_per_sqrt_h;
-  n.bias_instability =
-      s.vector3("bias_instability_deg_per_h", n.bias_instability / units::deg_per_h, true, Range::nonNegative()) *
-      units::deg_per_h;
-  n.bias_correlation_time = s.number("bias_correlation_s", n.bias_correlation_time, Range::positive());
-  n.bias_random_walk = s.vector3("bias_random_walk_deg_per_h_per_sqrt_h",
-                                 n.bias_random_walk / units::deg_per_h_per_sqrt_h, true, Range::nonNegative()) *
-                       units::deg_per_h_per_sqrt_h;
+  e.bias = s.vector3(simKey(ParamBlock::GyroBias), e.bias / unitOf(ParamBlock::GyroBias), true) * unitOf(ParamBlock::GyroBias);
+  readGain(s, ParamBlock::GyroScale, ParamBlock::GyroMisalignment, e);
+  readNoise(s, true, n);
   n.quantization = s.number("quantization_deg_per_s", n.quantization / units::deg_per_s, Range::nonNegative()) *
                    units::deg_per_s;
   n.saturation =
       s.number("saturation_deg_per_s", n.saturation / units::deg_per_s, Range::nonNegative()) * units::deg_per_s;
-  model.gyro_g_sensitivity =
-      s.matrix3("g_sensitivity_deg_per_h_per_g", model.gyro_g_sensitivity / g_sens_unit) * g_sens_unit;
+  refuseRenamed(s, "g_sensitivity_deg_per_h_per_g", simKey(ParamBlock::GyroGSensitivity),
+                blockInfo(ParamBlock::GyroGSensitivity).human_unit, "divide the values by 3600");
+  const double g_sens = unitOf(ParamBlock::GyroGSensitivity);
+  model.gyro_g_sensitivity = s.matrix3(simKey(ParamBlock::GyroGSensitivity), model.gyro_g_sensitivity / g_sens) * g_sens;
   // Positive: the gyro's samples lag the accelerometer's.
-  model.gyro_time_offset =
-      s.number("time_offset_ms", model.gyro_time_offset * 1e3, Range::between(-100.0, 100.0)) * 1e-3;
+  const double offset = unitOf(ParamBlock::GyroTimeOffset);
+  model.gyro_time_offset = s.number(simKey(ParamBlock::GyroTimeOffset), model.gyro_time_offset / offset,
+                                    Range::between(-0.1 / offset, 0.1 / offset)) *
+                           offset;
   s.finish();
 }
 
@@ -195,6 +214,11 @@ sim::SimConfig fromYaml(const YAML::Node& root, const std::string& name) {
 }
 
 }  // namespace
+
+std::string simKey(ParamBlock block) {
+  const ParamBlockInfo& info = blockInfo(block);
+  return info.id.substr(info.id.find('_') + 1) + "_" + info.suffix;
+}
 
 sim::SimConfig parseSimConfig(const std::string& yaml, const std::string& name) {
   return fromYaml(parseYaml(yaml, name), name);

@@ -45,20 +45,26 @@ json motionJson(const sim::MotionConfig& m) {
             {"components", m.jitter.components}}}};
 }
 
+double unitOf(ParamBlock block) { return blockInfo(block).si_per_human; }
+std::string noiseKey(const std::string& name, bool gyro, NoiseTerm term) { return name + noiseUnit(gyro, term).suffix; }
+json noiseVec(const Vec3& v, bool gyro, NoiseTerm term) { return vec(v, noiseUnit(gyro, term).factor); }
+
 json accelJson(const TriadErrors& e, const sim::TriadNoise& n) {
   const double g = units::kStandardGravity;
-  return {{"bias_mg", vec(e.bias, units::milli_g)},
+  return {{simKey(ParamBlock::AccelBias), vec(e.bias, unitOf(ParamBlock::AccelBias))},
           {"bias_m_per_s2", vec(e.bias)},
-          {"scale_ppm", vec(e.scale, units::ppm)},
+          {simKey(ParamBlock::AccelScale), vec(e.scale, unitOf(ParamBlock::AccelScale))},
           {"scale", vec(e.scale)},
-          {"misalignment_mrad", mat(e.misalignment, 1e-3)},
+          {simKey(ParamBlock::AccelMisalignment), mat(e.misalignment, unitOf(ParamBlock::AccelMisalignment))},
           {"misalignment_rad", mat(e.misalignment)},
-          {"vrw_m_per_s_per_sqrt_h", vec(n.white, units::m_per_s_per_sqrt_h)},
+          {noiseKey("vrw_", false, NoiseTerm::White), noiseVec(n.white, false, NoiseTerm::White)},
           {"vrw_m_per_s_per_sqrt_s", vec(n.white)},
-          {"bias_instability_ug", vec(n.bias_instability, units::micro_g)},
+          {noiseKey("bias_instability_", false, NoiseTerm::BiasInstability),
+           noiseVec(n.bias_instability, false, NoiseTerm::BiasInstability)},
           {"bias_instability_m_per_s2", vec(n.bias_instability)},
           {"bias_correlation_s", n.bias_correlation_time},
-          {"bias_random_walk_ug_per_sqrt_s", vec(n.bias_random_walk, units::micro_g)},
+          {noiseKey("bias_random_walk_", false, NoiseTerm::RandomWalk),
+           noiseVec(n.bias_random_walk, false, NoiseTerm::RandomWalk)},
           {"bias_random_walk_m_per_s2_per_sqrt_s", vec(n.bias_random_walk)},
           {"quantization_mg", n.quantization / units::milli_g},
           {"quantization_m_per_s2", n.quantization},
@@ -68,25 +74,26 @@ json accelJson(const TriadErrors& e, const sim::TriadNoise& n) {
 
 json gyroJson(const ImuErrorModel& model, const sim::TriadNoise& n) {
   const TriadErrors& e = model.gyro;
-  const double g_sens_unit = units::deg_per_h / units::kStandardGravity;
-  return {{"bias_deg_per_h", vec(e.bias, units::deg_per_h)},
+  return {{simKey(ParamBlock::GyroBias), vec(e.bias, unitOf(ParamBlock::GyroBias))},
           {"bias_rad_per_s", vec(e.bias)},
-          {"scale_ppm", vec(e.scale, units::ppm)},
+          {simKey(ParamBlock::GyroScale), vec(e.scale, unitOf(ParamBlock::GyroScale))},
           {"scale", vec(e.scale)},
-          {"misalignment_mrad", mat(e.misalignment, 1e-3)},
+          {simKey(ParamBlock::GyroMisalignment), mat(e.misalignment, unitOf(ParamBlock::GyroMisalignment))},
           {"misalignment_rad", mat(e.misalignment)},
-          {"arw_deg_per_sqrt_h", vec(n.white, units::deg_per_sqrt_h)},
+          {noiseKey("arw_", true, NoiseTerm::White), noiseVec(n.white, true, NoiseTerm::White)},
           {"arw_rad_per_sqrt_s", vec(n.white)},
-          {"bias_instability_deg_per_h", vec(n.bias_instability, units::deg_per_h)},
+          {noiseKey("bias_instability_", true, NoiseTerm::BiasInstability),
+           noiseVec(n.bias_instability, true, NoiseTerm::BiasInstability)},
           {"bias_instability_rad_per_s", vec(n.bias_instability)},
           {"bias_correlation_s", n.bias_correlation_time},
-          {"bias_random_walk_deg_per_h_per_sqrt_h", vec(n.bias_random_walk, units::deg_per_h_per_sqrt_h)},
+          {noiseKey("bias_random_walk_", true, NoiseTerm::RandomWalk),
+           noiseVec(n.bias_random_walk, true, NoiseTerm::RandomWalk)},
           {"bias_random_walk_rad_per_s_per_sqrt_s", vec(n.bias_random_walk)},
           {"quantization_deg_per_s", n.quantization / units::deg_per_s},
           {"quantization_rad_per_s", n.quantization},
           {"saturation_deg_per_s", n.saturation / units::deg_per_s},
           {"saturation_rad_per_s", n.saturation},
-          {"g_sensitivity_deg_per_h_per_g", mat(model.gyro_g_sensitivity, g_sens_unit)},
+          {simKey(ParamBlock::GyroGSensitivity), mat(model.gyro_g_sensitivity, unitOf(ParamBlock::GyroGSensitivity))},
           {"g_sensitivity_rad_per_s_per_m_per_s2", mat(model.gyro_g_sensitivity)}};
 }
 

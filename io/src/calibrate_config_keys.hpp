@@ -18,15 +18,26 @@
 
 namespace imucal::io::config_keys {
 
+// noise: vrw_m_per_s_per_sqrt_h, arw_deg_per_sqrt_h, {accel,gyro}_bias_walk_<unit>,
+// {accel,gyro}_bias_instability_<unit>, in the noise terms' units (human_unit.hpp).
 template <class Visitor>
 void noise(Visitor& v, NoiseConfig& n) {
   const Range positive = Range::positive(), non_negative = Range::nonNegative();
-  v.number("vrw_m_per_s_per_sqrt_h", n.accel_white, positive, units::m_per_s_per_sqrt_h);
-  v.number("arw_deg_per_sqrt_h", n.gyro_white, positive, units::deg_per_sqrt_h);
-  v.number("accel_bias_walk_ug_per_sqrt_s", n.accel_bias_walk, non_negative, units::micro_g);
-  v.number("gyro_bias_walk_deg_per_h_per_sqrt_h", n.gyro_bias_walk, non_negative, units::deg_per_h_per_sqrt_h);
-  v.number("accel_bias_instability_ug", n.accel_bias_instability, non_negative, units::micro_g);
-  v.number("gyro_bias_instability_deg_per_h", n.gyro_bias_instability, non_negative, units::deg_per_h);
+  const auto key = [](const std::string& name, bool gyro, NoiseTerm term) { return name + noiseUnit(gyro, term).suffix; };
+  const auto factor = [](bool gyro, NoiseTerm term) { return noiseUnit(gyro, term).factor; };
+  v.number(key("vrw_", false, NoiseTerm::White), n.accel_white, positive, factor(false, NoiseTerm::White));
+  v.number(key("arw_", true, NoiseTerm::White), n.gyro_white, positive, factor(true, NoiseTerm::White));
+  for (const bool gyro : {false, true}) {
+    const char* sensor = gyro ? "gyro_" : "accel_";
+    v.number(key(std::string(sensor) + "bias_walk_", gyro, NoiseTerm::RandomWalk),
+             gyro ? n.gyro_bias_walk : n.accel_bias_walk, non_negative, factor(gyro, NoiseTerm::RandomWalk));
+  }
+  for (const bool gyro : {false, true}) {
+    const char* sensor = gyro ? "gyro_" : "accel_";
+    v.number(key(std::string(sensor) + "bias_instability_", gyro, NoiseTerm::BiasInstability),
+             gyro ? n.gyro_bias_instability : n.accel_bias_instability, non_negative,
+             factor(gyro, NoiseTerm::BiasInstability));
+  }
   v.flag("from_data", n.from_data);
 }
 

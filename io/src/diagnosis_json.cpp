@@ -1,7 +1,6 @@
 #include <cmath>
 
 #include "imucal/io/diagnosis_report.hpp"
-#include "imucal/io/effect_units.hpp"
 
 namespace imucal::io {
 
@@ -10,7 +9,7 @@ namespace {
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 nlohmann::json effectJson(const EffectTest& t) {
-  const ParamUnit u = effectUnit(t.id);
+  const HumanUnit& u = t.unit;
   nlohmann::json j;
   j["id"] = t.id;
   j["verdict"] = verdictName(t.verdict);

@@ -3,7 +3,7 @@
 #include <sstream>
 
 #include "imucal/io/diagnosis_report.hpp"
-#include "imucal/io/effect_units.hpp"
+#include "imucal/io/param_units.hpp"
 #include "imucal/io/svg_plot.hpp"
 
 namespace imucal::io {
@@ -19,7 +19,7 @@ std::string fmt(double v, int precision = 3) {
 
 // "7.1 +- 0.15, -3.8 +- 0.15, z: unobservable" in the effect's unit.
 std::string valueText(const EffectTest& t) {
-  const ParamUnit u = effectUnit(t.id);
+  const ParamUnit& u = t.unit;
   std::ostringstream s;
   for (std::size_t i = 0; i < t.components.size(); ++i) {
     const auto k = static_cast<Eigen::Index>(i);
@@ -55,8 +55,9 @@ void gapTable(std::ostringstream& md, const ModelGap& before, const ModelGap& af
 // In the report's units: the deviation as a bias instability (deg/h, ug), the white-noise line labelled
 // with its density (deg/sqrt(h), m/s/sqrt(h); for the gyro the line's value in deg/h at tau = 1 h).
 PlotSpec allanPlot(const AllanCurve& c) {
-  const std::string sensor = c.channel.rfind("gyro", 0) == 0 ? "gyro" : "accel";
-  const ParamUnit adev = effectUnit(sensor + "_bias_instability"), white = effectUnit(sensor + "_white_noise");
+  const bool gyro = c.channel.rfind("gyro", 0) == 0;
+  const ParamUnit& adev = noiseUnit(gyro, NoiseTerm::BiasInstability);
+  const ParamUnit& white = noiseUnit(gyro, NoiseTerm::White);
   PlotSpec p;
   p.title = "Allan deviation " + c.channel + ": data and model";
   p.x_label = "tau (s)";

@@ -6,10 +6,7 @@
 
 namespace imucal::io {
 
-ParamUnit paramUnit(ParamBlock block) {
-  const ParamBlockInfo& b = blockInfo(block);
-  return {b.human_unit, b.suffix, b.si_unit, b.si_per_human};
-}
+ParamUnit paramUnit(ParamBlock block) { return blockInfo(block).unit(); }
 
 ParamUnit paramUnit(const std::string& name) {
   if (const auto ref = findParam(name)) return paramUnit(ref->block);

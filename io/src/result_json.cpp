@@ -85,33 +85,44 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
     out["moves"] = moves;
   }
   const WhiteNoiseEstimate& m = result.noise_measured;
-  json noise = {{"source", m.valid ? "still stretches of the recording" : "config"},
-                {"vrw_m_per_s_per_sqrt_h", numberOrNull(result.noise_used.accel_white / units::m_per_s_per_sqrt_h)},
-                {"arw_deg_per_sqrt_h", numberOrNull(result.noise_used.gyro_white / units::deg_per_sqrt_h)},
-                {"accel_bias_walk_ug_per_sqrt_s", numberOrNull(result.noise_used.accel_bias_walk / units::micro_g)},
-                {"gyro_bias_walk_deg_per_h_per_sqrt_h",
-                 numberOrNull(result.noise_used.gyro_bias_walk / units::deg_per_h_per_sqrt_h)},
-                {"accel_bias_instability_ug", numberOrNull(result.noise_used.accel_bias_instability / units::micro_g)},
-                {"gyro_bias_instability_deg_per_h", numberOrNull(result.noise_used.gyro_bias_instability / units::deg_per_h)}};
+  // Keys and units as the calibrate config's noise section has them (human_unit.hpp).
+  const auto key = [](const std::string& name, bool gyro, NoiseTerm term) { return name + noiseUnit(gyro, term).suffix; };
+  const auto human = [](double si, bool gyro, NoiseTerm term) { return si / noiseUnit(gyro, term).factor; };
+  const auto triad = [](const Vec3& v, bool gyro, NoiseTerm term) {
+    const double unit = noiseUnit(gyro, term).factor;
+    return json::array({v.x() / unit, v.y() / unit, v.z() / unit});
+  };
+  const NoiseConfig& used = result.noise_used;
+  json noise = {{"source", m.valid ? "still stretches of the recording" : "config"}};
+  noise[key("vrw_", false, NoiseTerm::White)] = numberOrNull(human(used.accel_white, false, NoiseTerm::White));
+  noise[key("arw_", true, NoiseTerm::White)] = numberOrNull(human(used.gyro_white, true, NoiseTerm::White));
+  noise[key("accel_bias_walk_", false, NoiseTerm::RandomWalk)] =
+      numberOrNull(human(used.accel_bias_walk, false, NoiseTerm::RandomWalk));
+  noise[key("gyro_bias_walk_", true, NoiseTerm::RandomWalk)] =
+      numberOrNull(human(used.gyro_bias_walk, true, NoiseTerm::RandomWalk));
+  noise[key("accel_bias_instability_", false, NoiseTerm::BiasInstability)] =
+      numberOrNull(human(used.accel_bias_instability, false, NoiseTerm::BiasInstability));
+  noise[key("gyro_bias_instability_", true, NoiseTerm::BiasInstability)] =
+      numberOrNull(human(used.gyro_bias_instability, true, NoiseTerm::BiasInstability));
   if (m.valid) {
-    const Vec3 vrw = m.accel_white / units::m_per_s_per_sqrt_h, arw = m.gyro_white / units::deg_per_sqrt_h;
     noise["measured"] = {{"still_s", m.still_seconds},
-                         {"vrw_per_axis", {vrw.x(), vrw.y(), vrw.z()}},
-                         {"arw_per_axis", {arw.x(), arw.y(), arw.z()}},
+                         {"vrw_per_axis", triad(m.accel_white, false, NoiseTerm::White)},
+                         {"arw_per_axis", triad(m.gyro_white, true, NoiseTerm::White)},
                          {"relative_sigma", m.relative_sigma}};
   }
   const BiasWalkEstimate& w = result.bias_walk_measured;
   noise["bias_walk_source"] = w.valid ? "longest still run of the recording" : "config";
   if (w.valid) {
-    const auto triad = [](const Vec3& v, double unit) { return json::array({v.x() / unit, v.y() / unit, v.z() / unit}); };
-    noise["bias_walk_measured"] = {
-        {"still_s", w.still_seconds},
-        {"accel_walk_ug_per_sqrt_s", triad(w.accel_walk, units::micro_g)},
-        {"accel_walk_sigma_ug_per_sqrt_s", triad(w.accel_walk_sigma, units::micro_g)},
-        {"accel_instability_ug", triad(w.accel_instability, units::micro_g)},
-        {"gyro_walk_deg_per_h_per_sqrt_h", triad(w.gyro_walk, units::deg_per_h_per_sqrt_h)},
-        {"gyro_walk_sigma_deg_per_h_per_sqrt_h", triad(w.gyro_walk_sigma, units::deg_per_h_per_sqrt_h)},
-        {"gyro_instability_deg_per_h", triad(w.gyro_instability, units::deg_per_h)}};
+    json walk = {{"still_s", w.still_seconds}};
+    walk[key("accel_walk_", false, NoiseTerm::RandomWalk)] = triad(w.accel_walk, false, NoiseTerm::RandomWalk);
+    walk[key("accel_walk_sigma_", false, NoiseTerm::RandomWalk)] = triad(w.accel_walk_sigma, false, NoiseTerm::RandomWalk);
+    walk[key("accel_instability_", false, NoiseTerm::BiasInstability)] =
+        triad(w.accel_instability, false, NoiseTerm::BiasInstability);
+    walk[key("gyro_walk_", true, NoiseTerm::RandomWalk)] = triad(w.gyro_walk, true, NoiseTerm::RandomWalk);
+    walk[key("gyro_walk_sigma_", true, NoiseTerm::RandomWalk)] = triad(w.gyro_walk_sigma, true, NoiseTerm::RandomWalk);
+    walk[key("gyro_instability_", true, NoiseTerm::BiasInstability)] =
+        triad(w.gyro_instability, true, NoiseTerm::BiasInstability);
+    noise["bias_walk_measured"] = walk;
   }
   out["noise"] = noise;
   json whiteness = json::array();

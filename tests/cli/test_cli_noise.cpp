@@ -39,10 +39,10 @@ TEST(CliNoise, SimulatedStillTermsWithinTheirSigmasOfTheTruth) {
   ScratchDir dir;
   // Crossovers of white noise and random walk near 10 s, so both show over 0.01-60 s.
   const double arw = 0.3, gyro_walk = 180.0;  // deg/sqrt(h), deg/h/sqrt(h)
-  const double vrw = 0.15, accel_walk = 40.0;  // m/s/sqrt(h), ug/sqrt(s)
+  const double vrw = 0.15, accel_walk = 2400.0;  // m/s/sqrt(h), ug/sqrt(h)
   std::ofstream(dir / "still.yaml") << "motion:\n  segments:\n    - still: {duration_s: 600}\n"
                                     << "imu:\n  rate_hz: 100\n  accel:\n    vrw_m_per_s_per_sqrt_h: " << vrw
-                                    << "\n    bias_random_walk_ug_per_sqrt_s: " << accel_walk
+                                    << "\n    bias_random_walk_ug_per_sqrt_h: " << accel_walk
                                     << "\n  gyro:\n    arw_deg_per_sqrt_h: " << arw
                                     << "\n    bias_random_walk_deg_per_h_per_sqrt_h: " << gyro_walk
                                     << "\nheading:\n  enabled: false\n";
@@ -56,7 +56,7 @@ TEST(CliNoise, SimulatedStillTermsWithinTheirSigmasOfTheTruth) {
   EXPECT_NEAR(j["still"]["seconds"].get<double>(), 600.0, 0.1);
   // Truth in SI: white densities and walks.
   const double white[2] = {vrw * units::m_per_s_per_sqrt_h, arw * units::deg_per_sqrt_h};
-  const double walk[2] = {accel_walk * units::micro_g, gyro_walk * units::deg_per_h_per_sqrt_h};
+  const double walk[2] = {accel_walk * units::micro_g_per_sqrt_h, gyro_walk * units::deg_per_h_per_sqrt_h};
   double worst = 0.0, rms = 0.0;
   for (int ch = 0; ch < 6; ++ch) {
     const int gyro = ch >= 3 ? 1 : 0;

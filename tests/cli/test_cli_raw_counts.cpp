@@ -99,7 +99,7 @@ TEST(CliRawCounts, HalfAgainOffTheDatasheetWithLargeOffsetsReachesTheAnswer) {
   simulateCounts(scratch.path(),
                  {{"scale_ppm: [15000, -20000, 10000]", "scale_ppm: [500000, -300000, 400000]"},
                   {"scale_ppm: [-12000, 20000, 8000]", "scale_ppm: [-300000, 500000, 350000]"},
-                  {"bias_mg: [45, -42, 48]", "bias_mg: [100, -100, 100]"},
+                  {"bias_ug: [45000, -42000, 48000]", "bias_ug: [100000, -100000, 100000]"},
                   {"bias_deg_per_h: [1200, -1400, 1100]", "bias_deg_per_h: [18000, -18000, 18000]"}},
                  3);
   const auto r = imucal::testing::runImucal("calibrate --imu " + path("counts.csv") + " --heading " + path("sim/heading.csv") +

@@ -46,13 +46,13 @@ imu:
   rate_hz: 200
   timing_jitter_us: 50
   accel:
-    bias_mg: [45, -40, 50]
+    bias_ug: [45000, -40000, 50000]
     scale_ppm: [1000, -2000, 500]
     misalignment_mrad: [1, 2, 3, 4, 5, 6]
     vrw_m_per_s_per_sqrt_h: 0.15
     bias_instability_ug: [20, 30, 40]
     bias_correlation_s: 300
-    bias_random_walk_ug_per_sqrt_s: 2
+    bias_random_walk_ug_per_sqrt_h: 120
     quantization_mg: 0.06
     saturation_g: 16
   gyro:
@@ -65,7 +65,7 @@ imu:
     bias_random_walk_deg_per_h_per_sqrt_h: 5
     quantization_deg_per_s: 0.0076
     saturation_deg_per_s: 2000
-    g_sensitivity_deg_per_h_per_g: 36
+    g_sensitivity_deg_per_s_per_g: 0.01
 heading: {enabled: false, rate_hz: 10, noise_deg: 2, bias_deg: 1.5, latency_ms: 20}
 )";
 
@@ -166,10 +166,19 @@ TEST(IoConfig, SimConfigErrorsNameLineAndKey) {
   const std::string motion = "motion: paper\n";  // line 1
   expectSimError({motion + "imu:\n  rate_hz: 0\n", ":3: imu.rate_hz: must be > 0 (got 0)"});
   expectSimError({motion + "imu:\n  rate_hz: fast\n", ":3: imu.rate_hz: expected a finite number, got 'fast'"});
-  expectSimError({motion + "imu:\n  accel:\n    bias_mgg: [1, 2, 3]\n",
-                  ":4: imu.accel: unknown key 'bias_mgg' (did you mean 'bias_mg'?)"});
-  expectSimError({motion + "imu:\n  accel:\n    bias_mg: [1, 2]\n",
-                  ":4: imu.accel.bias_mg: expected one number or a list of 3 numbers, got a list of 2"});
+  expectSimError({motion + "imu:\n  accel:\n    bias_ugg: [1, 2, 3]\n",
+                  ":4: imu.accel: unknown key 'bias_ugg' (did you mean 'bias_ug'?)"});
+  expectSimError({motion + "imu:\n  accel:\n    bias_ug: [1, 2]\n",
+                  ":4: imu.accel.bias_ug: expected one number or a list of 3 numbers, got a list of 2"});
+  // Keys whose unit changed are refused with the conversion, never matched to the new key by spelling.
+  expectSimError({motion + "imu:\n  accel:\n    bias_mg: [45, -42, 48]\n",
+                  ":4: imu.accel.bias_mg: renamed bias_ug (ug, as calibrate reports it): multiply the values by 1000"});
+  expectSimError({motion + "imu:\n  accel:\n    bias_random_walk_ug_per_sqrt_s: 2\n",
+                  ":4: imu.accel.bias_random_walk_ug_per_sqrt_s: renamed bias_random_walk_ug_per_sqrt_h (ug/sqrt(h), as "
+                  "calibrate reports it): multiply the values by 60"});
+  expectSimError({motion + "imu:\n  gyro:\n    g_sensitivity_deg_per_h_per_g: 360\n",
+                  ":4: imu.gyro.g_sensitivity_deg_per_h_per_g: renamed g_sensitivity_deg_per_s_per_g (deg/s/g, as "
+                  "calibrate reports it): divide the values by 3600"});
   expectSimError({motion + "imu:\n  gyro:\n    arw_deg_per_sqrt_h: -0.3\n",
                   ":4: imu.gyro.arw_deg_per_sqrt_h: must be >= 0 (got -0.3)"});
   expectSimError({motion + "imu:\n  gyro:\n    misalignment_mrad: [[1, 0, 0], [0, 0, 0], [0, 0, 0]]\n",
@@ -205,9 +214,9 @@ TEST(IoConfig, SimConfigErrorsNameLineAndKey) {
 }
 
 TEST(IoConfig, SimConfigFileErrorsNameThePath) {
-  const auto path = writeFile("bad_sim.yaml", "motion: paper\nimu:\n  accel:\n    bias_mg: [1, 2, x]\n");
+  const auto path = writeFile("bad_sim.yaml", "motion: paper\nimu:\n  accel:\n    bias_ug: [1, 2, x]\n");
   EXPECT_CONTAINS(inputErrorOf([&] { loadSimConfig(path); }),
-                  path + ":4: imu.accel.bias_mg[2]: expected a finite number, got 'x'");
+                  path + ":4: imu.accel.bias_ug[2]: expected a finite number, got 'x'");
   const std::string missing = (tempDir() / "nope.yaml").string();
   EXPECT_CONTAINS(inputErrorOf([&] { loadSimConfig(missing); }), missing + ": cannot open for reading");
 }
@@ -242,7 +251,7 @@ magnetometer:
 noise:
   vrw_m_per_s_per_sqrt_h: 0.2
   arw_deg_per_sqrt_h: 0.5
-  accel_bias_walk_ug_per_sqrt_s: 3
+  accel_bias_walk_ug_per_sqrt_h: 180
   gyro_bias_walk_deg_per_h_per_sqrt_h: 7
   accel_bias_instability_ug: 40
   gyro_bias_instability_deg_per_h: 12

@@ -146,14 +146,14 @@ TEST(IoJson, TruthListsEveryAppliedErrorInHumanAndSiUnits) {
   const auto j = truthToJson(c, out, 42);
   EXPECT_EQ(j["seed"], 42);
   EXPECT_EQ(j["imu_samples"], 3);
-  EXPECT_NEAR(j["imu"]["accel"]["bias_mg"][1].get<double>(), -40.0, 1e-12);
+  EXPECT_NEAR(j["imu"]["accel"]["bias_ug"][1].get<double>(), -40000.0, 1e-9);
   EXPECT_NEAR(j["imu"]["accel"]["bias_m_per_s2"][1].get<double>(), -40e-3 * g, 1e-15);
   EXPECT_NEAR(j["imu"]["gyro"]["bias_deg_per_h"][2].get<double>(), 1500.0, 1e-9);
   EXPECT_NEAR(j["imu"]["gyro"]["bias_rad_per_s"][2].get<double>(), 1500 * units::deg_per_h, 1e-18);
   EXPECT_NEAR(j["imu"]["accel"]["scale_ppm"][2].get<double>(), 300.0, 1e-9);
   EXPECT_NEAR(j["imu"]["accel"]["vrw_m_per_s_per_sqrt_h"][0].get<double>(), 0.15, 1e-12);
   EXPECT_NEAR(j["imu"]["gyro"]["arw_deg_per_sqrt_h"][0].get<double>(), 0.3, 1e-12);
-  EXPECT_NEAR(j["imu"]["gyro"]["g_sensitivity_deg_per_h_per_g"][1][1].get<double>(), 36.0, 1e-9);
+  EXPECT_NEAR(j["imu"]["gyro"]["g_sensitivity_deg_per_s_per_g"][1][1].get<double>(), 0.01, 1e-12);
   EXPECT_NEAR(j["heading"]["noise_deg"].get<double>(), 5.0, 1e-12);
   EXPECT_NEAR(j["heading"]["bias_rad"].get<double>(), 1 * deg, 1e-15);
   EXPECT_NEAR(j["heading"]["latency_ms"].get<double>(), 20.0, 1e-12);

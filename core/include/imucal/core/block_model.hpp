@@ -4,6 +4,7 @@
 // filter's dynamics (and so the information bound) and the still gyro's zero-rate row ask the block
 // instead of switching on it; docs/architecture.md lists what a new block still touches elsewhere.
 #include <Eigen/Core>
+#include <string>
 
 #include "imucal/core/param_registry.hpp"
 #include "imucal/core/types.hpp"
@@ -45,6 +46,11 @@ class BlockModel {
   // Its columns of the dynamics at lin: a reading's term moves the velocity (accelerometer) or the
   // attitude (gyro) by C_bn times its correction Jacobian; cols arrive zeroed.
   virtual void dynamicsColumns(const Linearization& lin, DynamicsColumns cols) const;
+  // True when one sample alone determines its correction, so a known value can be removed from the data
+  // before the filter sees it (diagnose's known model); otherwise the filter applies it.
+  virtual bool correctsEachSample() const { return false; }
+  // The motion or reference that makes component c observable, for a report that finds it is not.
+  virtual std::string revealedBy(int component) const = 0;
 };
 
 // A triad's offset: corrected = gain^-1 (measured - bias ...).
@@ -54,6 +60,8 @@ class TriadBias : public BlockModel {
   double& value(CalibrationParams& p, int component) const override;
   Reading reading() const override { return reading_; }
   BlockJacobian correctionJacobian(const Linearization& lin) const override;
+  bool correctsEachSample() const override { return true; }
+  std::string revealedBy(int component) const override;
 
  private:
   Reading reading_;
@@ -69,6 +77,8 @@ class MatrixTerms : public BlockModel {
   double& value(CalibrationParams& p, int component) const override;
   Reading reading() const override { return matrix_ == Matrix::AccelGain ? Reading::Accelerometer : Reading::Gyro; }
   BlockJacobian correctionJacobian(const Linearization& lin) const override;
+  bool correctsEachSample() const override { return true; }
+  std::string revealedBy(int component) const override;
 
  private:
   ParamBlock block_;
@@ -81,6 +91,7 @@ class GravityMagnitude : public BlockModel {
  public:
   double& value(CalibrationParams& p, int component) const override;
   void dynamicsColumns(const Linearization& lin, DynamicsColumns cols) const override;
+  std::string revealedBy(int component) const override;
 };
 
 // The IMU's position relative to the turn's centre: constant, it enters only the pseudo-observations
@@ -88,6 +99,7 @@ class GravityMagnitude : public BlockModel {
 class LeverArmPosition : public BlockModel {
  public:
   double& value(CalibrationParams& p, int component) const override;
+  std::string revealedBy(int component) const override;
 };
 
 // The gyro's lag behind the accelerometer, tau: its reading at t is the rate at t - tau, so the corrected
@@ -98,6 +110,7 @@ class GyroTimeOffset : public BlockModel {
   double& value(CalibrationParams& p, int component) const override;
   Reading reading() const override { return Reading::Gyro; }
   BlockJacobian correctionJacobian(const Linearization& lin) const override;
+  std::string revealedBy(int component) const override;
 };
 
 }  // namespace imucal

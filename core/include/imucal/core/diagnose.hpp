@@ -36,6 +36,7 @@ const char* verdictName(Verdict v);
 
 struct EffectTest {
   std::string id;
+  HumanUnit unit;                // the report's unit of value and sigma
   std::vector<std::string> components;
   Verdict verdict = Verdict::NotSignificant;
   VecX value;                    // the model's value with the fitted change applied, SI

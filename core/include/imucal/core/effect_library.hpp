@@ -1,11 +1,13 @@
 #pragma once
 // The candidate effects a diagnosis tests: each is one parametric term of SensorHypothesis (so of the
-// simulator's and the filter's shared model), with a stable id, its size scales and the motion that would
-// reveal it when the recording's motion does not.
+// simulator's and the filter's shared model), with a stable id, its unit, its size scales and the motion
+// that would reveal it when the recording's motion does not. The parameter blocks' candidates are made
+// from the registry (each row's DiagnoseSpec); the heading's timing and the drifts are listed here.
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "imucal/core/human_unit.hpp"
 #include "imucal/core/sensor_hypothesis.hpp"
 
 namespace imucal {
@@ -18,6 +20,7 @@ enum class EffectKind {
 struct Effect {
   std::string id;                       // stable: lever_arm, gyro_scale_z, heading_latency, ...
   EffectKind kind = EffectKind::Deterministic;
+  HumanUnit unit;                       // what the report shows its value in
   std::vector<std::string> components;  // {"x","y","z"} for vectors, {""} for scalars
   double step = 0.0;                    // finite-difference step, SI
   double plausible = 0.0;               // size the effect can plausibly have, SI: a sigma above it is "unobservable"

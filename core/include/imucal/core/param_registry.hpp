@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "imucal/core/human_unit.hpp"
+
 namespace imucal {
 
 enum class ParamBlock : int {
@@ -59,6 +61,18 @@ enum class BlockMode { Off, Estimate, Consider };
 
 class BlockModel;  // block_model.hpp
 
+// How `imucal diagnose` tests the block as an effect the model lacks (effect_library.cpp makes its
+// candidates from these): each listed component alone, or the whole block as one effect.
+struct DiagnoseSpec {
+  enum class Tested { No, EachComponent, WholeBlock };
+  Tested tested = Tested::No;
+  double step = 0.0;       // finite-difference step of the likelihood, SI
+  // The size a term missing from a calibrated model can plausibly have, SI (smaller than `plausible`,
+  // which bounds a raw sensor): a fit beyond twice this is refused as the likelihood chasing something else.
+  double plausible = 0.0;
+  std::vector<std::string> components;  // tested components (EachComponent); empty: all
+};
+
 struct ParamBlockInfo {
   ParamBlock block;
   // What the block does: where it lives in the parameters, what an error in it does to the error state.
@@ -75,6 +89,7 @@ struct ParamBlockInfo {
   // A calibration config (file or the daemon's) that does not name the block: the full sensor model, what
   // the motion cannot reveal staying at its prior and reported so.
   BlockMode config_mode = BlockMode::Off;
+  DiagnoseSpec diagnose;
   std::string description;
   // Belongs to one session, not to the sensor or the place (how the hand held the device): never carried
   // from one calibration into the next (the daemon's carry-over).
@@ -82,6 +97,7 @@ struct ParamBlockInfo {
 
   int size() const { return static_cast<int>(components.size()); }
   std::string paramName(int component) const;
+  HumanUnit unit() const { return {human_unit, suffix, si_unit, si_per_human}; }
 };
 
 // The table, in state order: paramBlocks()[i].block is ParamBlock i and has kParamBlockSizes[i] components

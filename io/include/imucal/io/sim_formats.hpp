@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "imucal/core/param_registry.hpp"
 #include "imucal/sim/simulator.hpp"
 
 namespace imucal::io {
@@ -13,6 +14,10 @@ namespace imucal::io {
 sim::SimConfig loadSimConfig(const std::string& path);
 // Same, from text; `name` stands in for the file name in messages.
 sim::SimConfig parseSimConfig(const std::string& yaml, const std::string& name);
+
+// A triad parameter block's key in the simulator's config and truth: its registry id without the sensor,
+// and its registry unit ("bias_ug", "scale_ppm", "g_sensitivity_deg_per_s_per_g").
+std::string simKey(ParamBlock block);
 
 // Every applied error and setting of a simulation. "parameters" holds the truth under the same names and
 // units as resultToJson's (value at t = 0 and, for drifting biases, at the end and averaged over the run),
