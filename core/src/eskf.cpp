@@ -164,8 +164,13 @@ double Eskf::updateCentre(const CentreObservation& observation, int channel0, co
   point.lever_arm = model_.lever_arm;
   point.gyro_gain_inv = gyro_gain_inv_;
   const bool velocity = observation.quantity() == CentreObservation::Quantity::Velocity;
-  if (velocity && (!point.lever_arm.isZero() || layout_.has(ParamBlock::LeverArm)))
-    point.w_b = corrected(last_raw_).gyro - point.c_bn.transpose() * earth_.earthRateNed();
+  if (velocity && (!point.lever_arm.isZero() || layout_.has(ParamBlock::LeverArm))) {
+    // The rate at the step's end as predict() integrated it: moved forward by the gyro's lag.
+    Vec3 rate = corrected(last_raw_).gyro;
+    const double lag = model_.imu.gyro_time_offset;
+    if (lag != 0.0) rate += lag * last_rate_change_;
+    point.w_b = rate - point.c_bn.transpose() * earth_.earthRateNed();
+  }
   observation.rows(point, layout_, centre_rows_);
   const Vec3 predicted = observation.centreOf(device, point);
   // The nominal centre's displacement (velocity) where its motion is modelled, else it stays at zero.
@@ -209,7 +214,7 @@ Eskf::HeadingOutcome Eskf::updateHeading(double heading, double sigma, double ga
   }
   HeadingObservation::row(c, layout_, row_);
   const StateVec& h = row_.h;
-  const double y = wrapAngle(heading - headingOf(c)) - h.dot(dx_);
+  const double y = HeadingObservation::innovation(heading, c) - h.dot(dx_);
   const double r = sigma * sigma;
   const double s_pred = h.dot(P_ * h) + r;
   out.innovation = y;
@@ -232,8 +237,7 @@ Eskf::ZeroRateOutcome Eskf::updateZeroRate(const ImuSample& mean_raw, double sec
   // reading, whose noise and bias error would make the scale look observable at a still.
   ZeroRateObservation::row(layout_, c, m.accel, c.transpose() * w_ie, gyro_gain_inv_, w_ie, row_);
   const StateVec& h = row_.h;
-  const Vec3 up = c.transpose() * Vec3(0.0, 0.0, -1.0);
-  const double y = up.dot(c.transpose() * w_ie - m.gyro) - h.dot(dx_);
+  const double y = ZeroRateObservation::innovation(c, w_ie, m.gyro) - h.dot(dx_);
   const double r = ZeroRateObservation::variance(psd, c, gyro_gain_inv_, seconds, earth_.earth_rate);
   out.innovation = y;
   out.nis = y * y / (h.dot(P_ * h) + r);

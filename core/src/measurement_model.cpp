@@ -66,6 +66,10 @@ void HeadingObservation::row(const Mat3& c_bn, const StateLayout& layout, Measur
   headingJacobian(c_bn, layout, out.h);
 }
 
+double HeadingObservation::innovation(double heading, const Mat3& c_bn) {
+  return wrapAngle(heading - headingOf(c_bn));
+}
+
 bool ZeroRateObservation::scheduled(const MeasurementConfig& m, double run_seconds) {
   return m.zero_rate && run_seconds >= m.zero_rate_min_seconds;
 }
@@ -80,6 +84,11 @@ double ZeroRateObservation::variance(double psd, const Mat3& c_bn, const Mat3& g
                                      bool earth_rate_modelled) {
   const Vec3 up = c_bn.transpose() * Vec3(0.0, 0.0, -1.0);
   return zeroRateVariance(psd * (gyro_gain_inv.transpose() * up).squaredNorm(), run_seconds, earth_rate_modelled);
+}
+
+double ZeroRateObservation::innovation(const Mat3& c_bn, const Vec3& w_ie_ned, const Vec3& corrected_rate) {
+  const Vec3 up = c_bn.transpose() * Vec3(0.0, 0.0, -1.0);
+  return up.dot(c_bn.transpose() * w_ie_ned - corrected_rate);
 }
 
 StepSchedule::StepSchedule(std::size_t per_step, int merged_at_rest)

@@ -66,6 +66,8 @@ struct HeadingObservation {
   static bool scheduled(const MeasurementConfig& m, const Mat3& c_bn);
   static void row(const Mat3& c_bn, const StateLayout& layout, MeasurementRow& out);
   static double variance(const MeasurementConfig& m) { return m.heading_sigma * m.heading_sigma; }
+  // The measured heading minus the one predicted at c_bn, wrapped to (-pi, pi].
+  static double innovation(double heading, const Mat3& c_bn);
 };
 
 // The vertical component of a still run's mean gyro reading (zero_rate.hpp).
@@ -80,6 +82,9 @@ struct ZeroRateObservation {
   // more of it once corrected.
   static double variance(double psd, const Mat3& c_bn, const Mat3& gyro_gain_inv, double run_seconds,
                          bool earth_rate_modelled);
+  // The vertical component of what a gyro at rest reads (the modelled Earth rate) minus the run's mean
+  // corrected reading.
+  static double innovation(const Mat3& c_bn, const Vec3& w_ie_ned, const Vec3& corrected_rate);
 };
 
 // Where the filter's steps end: every per_step samples, or steps_merged_at_rest times that while every
