@@ -10,6 +10,7 @@
 #include "recording_input.hpp"
 #include "imucal/core/diagnose.hpp"
 #include "imucal/io/atomic_file.hpp"
+#include "imucal/io/config.hpp"
 #include "imucal/io/diagnosis_report.hpp"
 #include "imucal/io/json_output.hpp"
 
@@ -22,6 +23,7 @@ struct DiagnoseArgs {
   std::string config;
   std::string out_md;
   std::string out_json;
+  std::string write_config;
   int max_steps = 4;
   double alpha = 0.01;
   double allan_min_still = 60.0;
@@ -83,6 +85,14 @@ void runDiagnoseCommand(const DiagnoseArgs& args) {
                     {"mag", args.input.mag}, {"config", args.config}};
   io::writeJsonFile(args.out_json, json);
   printSteps(d);
+  if (!args.write_config.empty()) {
+    // The config the diagnosis ended with: the input's, with what it named added (values, noise, heading
+    // timing), so a calibration (or a second diagnosis) starts where this one ended.
+    io::CalibrateConfig found = config;
+    found.filter = d.final_model.filterWithKnown();
+    io::writeCalibrateConfig(args.write_config, found);
+    std::cout << "wrote " << args.write_config << " (the config with the effects found)\n";
+  }
   std::cout << "wrote " << args.out_md << " (" << plots.size() << " plots in " << plot_dir.string() << ") and "
             << args.out_json << '\n';
 }
@@ -96,6 +106,8 @@ void addDiagnoseCommand(CLI::App& app) {
   cmd->add_option("--config", args->config, "Calibration config (YAML): the starting model")->check(CLI::ExistingFile);
   cmd->add_option("--out-md", args->out_md, "Markdown report (SVG plots go to <stem>_plots/)")->required();
   cmd->add_option("--out-json", args->out_json, "JSON of the effects found")->required();
+  cmd->add_option("--write-config", args->write_config,
+                  "Write the calibrate config with the effects found added (YAML)");
   cmd->add_option("--max-steps", args->max_steps, "Most effects to add")->capture_default_str()->check(CLI::Range(0, 20));
   cmd->add_option("--alpha", args->alpha, "Chance per round of naming something the model explains")
       ->capture_default_str()

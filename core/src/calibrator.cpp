@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "imucal/core/allan.hpp"
+#include "imucal/core/block_model.hpp"
 #include "imucal/core/consistency.hpp"
 #include "imucal/core/convergence.hpp"
 #include "imucal/core/eskf.hpp"
@@ -79,6 +80,36 @@ VecX paramSigmas(const MatX& P, const StateLayout& layout) {
   return P.diagonal().segment(StateLayout::kParamStart, layout.paramCount()).cwiseSqrt();
 }
 
+// Covariance of the accelerometer's reading of gravity as the filter knows it at this epoch: from its
+// attitude and the accelerometer's blocks (and gravity's magnitude where that is a state). Beside the white
+// noise, what the gap's re-simulated reading (model_gap.cpp) cannot know.
+Mat3 gravityReadingCovariance(const Eskf& filter, const StateLayout& layout, const FilterConfig& config) {
+  const CalibrationParams p = toCalibrationParams(layout, filter.estimatedParams(), config.model);
+  const Mat3 c_bn = filter.estimatedNav().q_nb.toRotationMatrix();
+  const Vec3 g_n = config.earth.gravityNed();
+  const Mat3 gain = p.imu.accel.gainMatrix();
+  // reading = gain f + bias with f = -C_bn^T g_n. Errors are true minus estimated, C_bn true = (I + [phi x])
+  // C_bn estimated, so an attitude error phi moves f by -C_bn^T [g_n x] phi; signs matter here, the
+  // attitude's and the bias's errors being correlated.
+  Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kMaxStates> j =
+      Eigen::Matrix<double, 3, Eigen::Dynamic, Eigen::ColMajor, 3, kMaxStates>::Zero(3, layout.size);
+  j.middleCols<3>(StateLayout::kAtt) = -gain * c_bn.transpose() * skew(g_n);
+  Linearization lin;
+  lin.f_b = -c_bn.transpose() * g_n;
+  lin.accel_gain_inv = gain.inverse();
+  for (const auto& info : paramBlocks()) {
+    if (!layout.has(info.block)) continue;
+    if (info.model->reading() == Reading::Accelerometer) {
+      // The reading's Jacobian is the correction's through the gain: corrected = gain^-1 (reading - ...).
+      j.middleCols(layout.offset(info.block), info.size()) = -gain * info.model->correctionJacobian(lin);
+    } else if (info.block == ParamBlock::Gravity) {
+      j.col(layout.offset(info.block)) = gain * c_bn.transpose() * Vec3(0.0, 0.0, -1.0);
+    }
+  }
+  const StateMat& P = filter.covariance();
+  return j * P.topLeftCorner(layout.size, layout.size) * j.transpose();
+}
+
 struct PassOutput {
   VecX params;
   StateMat P;
@@ -132,6 +163,7 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     e.sample = k;
     e.params = filter.estimatedParams();
     e.sigmas = paramSigmas(filter.covariance(), layout);
+    e.gravity_reading_cov = gravityReadingCovariance(filter, layout, config);
     const NavState nav = filter.estimatedNav();
     e.euler = quatToEuler(nav.q_nb);
     e.velocity = nav.v;

@@ -188,6 +188,42 @@ Candidate testProcessNoise(const Effect& e, const SensorHypothesis& model, doubl
   return c;
 }
 
+// Effects the recording does not tell from the named one explain the data as well as it does: those whose
+// estimates correlate with it (beyond reported_correlation) and whose likelihood ratio falls short of its
+// by less than `discriminating` (or that correlate beyond kIndistinguishable). Each significant one is
+// refined and reported with its own value, and the one whose value is the smallest share of its plausible
+// size is named (on a level turn with heading, a heading latency rather than a gyro lead of the same
+// size). Returns the candidate named; `named` and the step's alternatives follow it.
+Candidate* chooseAmongIndistinguishable(Candidate* best, EffectTest& named, std::vector<Candidate>& candidates,
+                                        DiagnoseStep& step, const SensorHypothesis& model, Evaluator& eval,
+                                        double discriminating) {
+  const auto share = [](const Effect& e, const EffectTest& t) {
+    double worst = 0.0;
+    for (Eigen::Index i = 0; i < t.value.size(); ++i)
+      if (t.observable[static_cast<std::size_t>(i)]) worst = std::max(worst, std::abs(t.value(i)) / e.plausible);
+    return worst;
+  };
+  Candidate* chosen = best;
+  for (const auto& [id, rho] : step.correlated) {
+    Candidate* c = nullptr;
+    for (auto& k : candidates)
+      if (k.effect->id == id) c = &k;
+    if (c == nullptr || c->test.verdict != Verdict::Significant) continue;
+    if (std::abs(rho) <= kIndistinguishable && best->test.lr - c->test.lr >= discriminating) continue;
+    EffectTest alternative = c->test;
+    fillFromFit(alternative, refine(*c->effect, model, c->fit, eval));
+    if (alternative.dof < c->test.dof || !plausible(*c->effect, alternative)) continue;
+    if (share(*c->effect, alternative) < share(*chosen->effect, named)) {
+      step.alternatives.push_back(named);
+      chosen = c;
+      named = alternative;
+    } else {
+      step.alternatives.push_back(alternative);
+    }
+  }
+  return chosen;
+}
+
 }  // namespace
 
 Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingSample>& heading,
@@ -330,8 +366,10 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
         const double rho = hab / std::sqrt(ha * hb);  // -I_ab / sqrt(I_aa I_bb) with I = -H
         if (std::abs(rho) > options.reported_correlation) s.correlated.emplace_back(c.effect->id, rho);
       }
+      best = chooseAmongIndistinguishable(best, named, candidates, s, model, eval,
+                                          chiSquareQuantile(options.family_alpha, 1));
     }
-    e.set(model, named.value);
+    best->effect->set(model, named.value);
     gap = eval.gap(model);
     named.lr = 2.0 * (gap.log_likelihood - l0);
     named.verdict = Verdict::Significant;

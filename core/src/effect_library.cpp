@@ -85,9 +85,9 @@ Effect biasDrift(bool gyro) {
   e.kind = EffectKind::ProcessNoise;
   e.unit = noiseUnit(gyro, NoiseTerm::RandomWalk);
   e.components = {""};
-  // The grid's smallest density and the largest a consumer part drifts, SI.
+  // The grid's smallest density, and an order of magnitude beyond what a consumer part's bias walks.
   e.step = gyro ? 1.0 * units::deg_per_h : 10.0 * units::micro_g;
-  e.plausible = gyro ? 1e3 * units::deg_per_h : 1e4 * units::micro_g;
+  e.plausible = (gyro ? 3000.0 : 6000.0) * e.unit.factor;
   e.reveals = "a longer recording (the drift grows with sqrt(time))";
   e.get = [gyro](const SensorHypothesis& h) {
     return scalar(gyro ? h.filter.noise.gyro_bias_walk : h.filter.noise.accel_bias_walk);

@@ -154,6 +154,7 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
     if (span < 0.5 * kResidualBlock) break;
     // Mean measured and re-simulated specific force over the block's intervals.
     Vec3 measured = Vec3::Zero(), simulated = Vec3::Zero();
+    Mat3 known = Mat3::Zero();  // time-weighted mean of the filter's own uncertainty of the reading
     bool all_still = true;
     for (std::size_t k = start; k < end; ++k) {
       const std::size_t j = epochOf(k);  // the filter step sample k belongs to
@@ -163,17 +164,26 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
       const Vec3 w_a = gyro.remove(imu[k].gyro), w_b = gyro.remove(imu[k + 1].gyro);
       const Vec3 w = 0.5 * (w_a + w_b);
       const Mat3 c = quatAt(k, j).toRotationMatrix();
+      const Mat3 c_next = quatAt(k + 1, epochOf(k + 1)).toRotationMatrix();
       const Vec3 w_nb = w - c.transpose() * w_ie;
       const Vec3 alpha = (w_b - w_a) / dt;
-      const Vec3 f_true = leverArmAcceleration(w_nb, alpha, r) - c.transpose() * g_n;
+      // Gravity in body axes at both ends of the interval, as the measured side's trapezoid: a tilting
+      // device's gravity moves by the interval's turn, which taken at one end is half a sample early.
+      const Vec3 g_b = 0.5 * (c.transpose() + c_next.transpose()) * g_n;
+      const Vec3 f_true = leverArmAcceleration(w_nb, alpha, r) - g_b;
       simulated += dt * accel.apply(f_true);
       measured += dt * 0.5 * (imu[k].accel + imu[k + 1].accel);
+      known += dt * history[j].gravity_reading_cov;
       all_still = all_still && history[j].still;
     }
     const Vec3 accel_residual = (measured - simulated) / span;
     const double t_mid = 0.5 * (imu[start].t + imu[end].t);
+    known /= span;
     for (int i = 0; i < 3; ++i) {
-      const double ea = accel_residual(i) / (accel_white / std::sqrt(span));
+      // The claimed sigma: the white noise averaged over the block and what the filter does not know of
+      // its attitude and accelerometer (nearly constant over a block, so not averaged down).
+      const double claimed = std::sqrt(accel_white * accel_white / span + std::max(known(i, i), 0.0));
+      const double ea = accel_residual(i) / claimed;
       accel_acc[i].of(all_still).push_back(ea);
       accel_series[i].t.push_back(t_mid);
       accel_series[i].value.push_back(ea);

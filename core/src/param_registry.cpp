@@ -58,7 +58,7 @@ std::array<ParamBlockInfo, kParamBlockCount> makeTable() {
        "IMU position relative to the centre of the turn, body axes", true},
       // Low-pass filters of consumer parts delay a triad by 0-20 ms, and their settings differ per triad.
       {ParamBlock::GyroTimeOffset, std::make_shared<GyroTimeOffset>(), "gyro_time_offset", {""}, "s", "ms", "ms",
-       1e-3, 0.01, 0.1, BlockMode::Off, BlockMode::Off, {},
+       1e-3, 0.01, 0.1, BlockMode::Off, BlockMode::Off, {Each, 2e-3, 0.02, {}},
        "time by which the gyro's samples lag the accelerometer's (read at t: the rate at t - offset)"},
   }};
 }

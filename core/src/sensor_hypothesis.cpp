@@ -1,5 +1,8 @@
 #include "imucal/core/sensor_hypothesis.hpp"
 
+#include "imucal/core/block_model.hpp"
+#include "imucal/core/param_vector.hpp"
+
 namespace imucal {
 
 SensorHypothesis SensorHypothesis::fromFilter(const FilterConfig& filter) {
@@ -12,6 +15,21 @@ SensorHypothesis SensorHypothesis::fromFilter(const FilterConfig& filter) {
   h.accel_noise.random_walk = filter.noise.accel_bias_walk;
   h.accel_noise.bias_instability = filter.noise.accel_bias_instability;
   return h;
+}
+
+FilterConfig SensorHypothesis::filterWithKnown() const {
+  FilterConfig f = filter;
+  CalibrationParams p;
+  p.imu = known;
+  for (const ParamBlockInfo& info : paramBlocks()) {
+    if (!info.model->correctsEachSample()) continue;
+    for (int c = 0; c < info.size(); ++c) {
+      const double v = info.model->value(p, c);
+      const ParamRef ref{info.block, c};
+      if (v != 0.0) f.model.setMean(ref, f.model.mean(ref) + v);
+    }
+  }
+  return f;
 }
 
 std::vector<ImuSample> removeKnownErrors(const std::vector<ImuSample>& imu, const ImuErrorModel& known) {

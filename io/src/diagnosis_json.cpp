@@ -68,6 +68,9 @@ nlohmann::json diagnosisToJson(const Diagnosis& d) {
     nlohmann::json corr = nlohmann::json::array();
     for (const auto& [id, rho] : s.correlated) corr.push_back({{"id", id}, {"correlation", rho}});
     step["correlated_with"] = corr;
+    nlohmann::json alternatives = nlohmann::json::array();
+    for (const auto& a : s.alternatives) alternatives.push_back(effectJson(a));
+    step["indistinguishable_alternatives"] = alternatives;
     steps.push_back(step);
   }
   j["effects_found"] = steps;

@@ -124,10 +124,15 @@ std::string diagnosisMarkdown(const Diagnosis& d, const std::vector<NamedPlot>& 
          << fmt(s.effect.threshold, 3) << ") | " << gap << " |\n";
     }
     md << '\n';
-    for (const auto& s : d.steps)
+    for (const auto& s : d.steps) {
       for (const auto& [id, rho] : s.correlated)
         md << "- `" << s.effect.id << "` and `" << id << "` correlate at " << fmt(rho, 2)
-           << (std::abs(rho) > 0.95 ? ": indistinguishable on this motion" : "") << ".\n";
+           << (std::abs(rho) > kIndistinguishable ? ": indistinguishable on this motion" : "") << ".\n";
+      for (const auto& a : s.alternatives)
+        md << "- `" << a.id << "` (" << valueText(a) << ") would explain the gap as well as `" << s.effect.id
+           << "` on this motion; `" << s.effect.id << "` is named, its size being the smaller share of what it can "
+           << "plausibly be. What reveals `" << a.id << "`: " << a.reveals << ".\n";
+    }
     md << '\n';
   }
   md << "The likelihood ratio (LR) is 2 x the gain in the filter's innovation log-likelihood; the threshold is the "

@@ -35,9 +35,11 @@ TEST(DiagnoseCli, NamesAHiddenLeverArmAndWritesReportJsonAndPlots) {
 
   const auto sim = runImucal("simulate --config " + (dir / "sim.yaml").string() + " --seed 5 --out " + (dir / "sim").string());
   ASSERT_EQ(sim.status, 0) << sim.output;
-  const auto diag = runImucal("diagnose --imu " + (dir / "sim/imu.csv").string() + " --heading " +
-                              (dir / "sim/heading.csv").string() + " --config " + kConfigs + "paper-calibrate.yaml --out-md " +
-                              (dir / "report.md").string() + " --out-json " + (dir / "report.json").string());
+  const std::string recording = "diagnose --imu " + (dir / "sim/imu.csv").string() + " --heading " +
+                                (dir / "sim/heading.csv").string();
+  const auto diag = runImucal(recording + " --config " + kConfigs + "paper-calibrate.yaml --out-md " +
+                              (dir / "report.md").string() + " --out-json " + (dir / "report.json").string() +
+                              " --write-config " + (dir / "found.yaml").string());
   ASSERT_EQ(diag.status, 0) << diag.output;
   std::cout << diag.output;
 
@@ -65,6 +67,23 @@ TEST(DiagnoseCli, NamesAHiddenLeverArmAndWritesReportJsonAndPlots) {
   EXPECT_TRUE(fs::exists(dir / "report_plots" / "residuals_accel_x.svg"));
   const auto svg_size = fs::file_size(dir / "report_plots" / "residuals_accel_x.svg");
   EXPECT_GT(svg_size, 1000u);
+
+  // The loop closes: the config it wrote holds the lever arm found, and a second diagnosis with it starts
+  // from the gap the first ended with and finds nothing more.
+  const auto again = runImucal(recording + " --config " + (dir / "found.yaml").string() + " --out-md " +
+                               (dir / "again.md").string() + " --out-json " + (dir / "again.json").string());
+  ASSERT_EQ(again.status, 0) << again.output;
+  std::ifstream found((dir / "found.yaml").string());
+  std::stringstream found_text;
+  found_text << found.rdbuf();
+  EXPECT_NE(found_text.str().find("lever_arm_x_cm: "), std::string::npos) << found_text.str();
+  const auto second = nlohmann::json::parse(std::ifstream((dir / "again.json").string()));
+  EXPECT_TRUE(second["effects_found"].empty()) << again.output;
+  const double ended = json["gap_final"]["worst_ratio"].get<double>();
+  const double started = second["gap_initial"]["worst_ratio"].get<double>();
+  std::cout << "worst gap: first diagnosis " << json["gap_initial"]["worst_ratio"].get<double>() << " -> " << ended
+            << ", second starts at " << started << '\n';
+  EXPECT_NEAR(started, ended, 0.05 * ended);
 }
 
 }  // namespace

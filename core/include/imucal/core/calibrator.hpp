@@ -30,6 +30,9 @@ struct EpochRecord {
   Vec3 velocity = Vec3::Zero();
   Vec3 position = Vec3::Zero();
   bool still = false;         // static detector's verdict
+  // Covariance of what the accelerometer reads of gravity, from the filter's attitude and accelerometer
+  // uncertainty at this epoch (m/s^2)^2: how well the filter itself could re-simulate the reading.
+  Mat3 gravity_reading_cov = Mat3::Zero();
 };
 
 

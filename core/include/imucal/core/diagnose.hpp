@@ -32,6 +32,10 @@ struct DiagnoseOptions {
 // kImplausible x its plausible size): the likelihood is chasing something the library lacks.
 enum class Verdict { Significant, NotSignificant, Unobservable, InModel, Implausible };
 constexpr double kImplausible = 2.0;
+// Two effects whose estimates correlate beyond this on a recording are indistinguishable there: either
+// explains the gap (the step names one and reports the others as alternatives). Correlated less, they are
+// still told apart only if their likelihood ratios differ by the family's 1-dof quantile.
+constexpr double kIndistinguishable = 0.95;
 const char* verdictName(Verdict v);
 
 struct EffectTest {
@@ -59,6 +63,8 @@ struct DiagnoseStep {
   EffectTest effect;             // the one named
   std::vector<EffectTest> tests; // every candidate of the round
   std::vector<std::pair<std::string, double>> correlated;  // other effects and their correlation with it
+  // Effects indistinguishable from it on this motion, each fitted alone: any of them explains the gap.
+  std::vector<EffectTest> alternatives;
   ModelGap gap_before, gap_after;
   double allan_misfit_before = 0.0, allan_misfit_after = 0.0;  // noise steps: sqrt(misfit / points)
 };

@@ -3,8 +3,9 @@
 // (still / turning): the filter's normalized innovations (RMS and lag-1 autocorrelation, 1 and 0 when
 // the model explains the data) and the measured accelerometer data against data re-simulated from the
 // reconstructed motion (the filter's attitude, the corrected gyro's rate, the centre held still, the lever
-// arm) through core's sensor model with the calibrated parameters, averaged over blocks and divided by the
-// model's white noise; and the heading innovations averaged over the same blocks. There is no gyro
+// arm) through core's sensor model with the calibrated parameters, averaged over blocks and divided by
+// what the model claims for them (its white noise over the block and the filter's own uncertainty of the
+// reading from its attitude and accelerometer states); and the heading innovations averaged over the same blocks. There is no gyro
 // counterpart: with heading at 100 Hz the reconstructed attitude's increments are set by the heading
 // corrections, so a gyro mismatch shows in the heading innovations.
 #include <string>

@@ -18,6 +18,10 @@ struct SensorHypothesis {
 
   // Noise terms taken from the filter's process noise (white density, bias random walk).
   static SensorHypothesis fromFilter(const FilterConfig& filter);
+  // The hypothesis as one filter configuration, what a calibration with it should use: the known errors
+  // added to their blocks' values (to first order: both are small corrections of the same reading), which
+  // the filter applies where the block is not a state and starts from where it is.
+  FilterConfig filterWithKnown() const;
 };
 
 // The data with the known deterministic errors removed (what the filter should see).
