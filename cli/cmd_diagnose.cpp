@@ -31,7 +31,9 @@ struct DiagnoseArgs {
 };
 
 void printSteps(const Diagnosis& d) {
-  if (d.steps.empty()) std::cout << "nothing significant: the model explains the data\n";
+  if (d.steps.empty())
+    std::cout << (d.unexplained ? "nothing named: no candidate explains the gap\n"
+                                : "nothing significant: the model explains the data\n");
   for (const auto& s : d.steps) {
     const HumanUnit& u = s.effect.unit;
     std::cout << std::left << std::setw(24) << s.effect.id << std::right;
@@ -43,6 +45,14 @@ void printSteps(const Diagnosis& d) {
     std::cout << ' ' << u.human << ", LR " << s.effect.lr;
     if (!s.gap_after.channels.empty()) std::cout << ", worst gap " << s.gap_before.worst() << " -> " << s.gap_after.worst();
     else std::cout << ", Allan misfit " << s.allan_misfit_before << " -> " << s.allan_misfit_after;
+    std::cout << '\n';
+  }
+  if (d.unexplained) {
+    const Unexplained& u = *d.unexplained;
+    std::cout << "unexplained: " << u.channel << " (" << u.segment << ") left at " << u.ratio
+              << " x what the model claims; no candidate fits it";
+    if (!u.signature.empty())
+      std::cout << " (its size follows " << u.signature.front().first << ", correlation " << u.signature.front().second << ")";
     std::cout << '\n';
   }
 }

@@ -17,6 +17,7 @@ const char* verdictName(Verdict v) {
     case Verdict::Unobservable: return "unobservable";
     case Verdict::InModel: return "in the model";
     case Verdict::Implausible: return "implausible";
+    case Verdict::Absorbing: return "absorbs an unexplained gap";
   }
   return "?";
 }
@@ -330,6 +331,17 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
           continue;
         }
       }
+      // A fit that leaves the gap unexplained is judged against that misfit: the likelihood assumed the
+      // model's noise, and residuals the worst gap squared times larger inflate every likelihood ratio as
+      // much (quasi-likelihood). A true effect explains its gap and keeps its ratio; one that only absorbs
+      // part of something the library lacks does not.
+      SensorHypothesis with = model;
+      c->effect->set(with, named.value);
+      const double left = eval.gap(with).worst();
+      if (left > kExplainedGap && c->test.lr / (left * left) <= c->test.threshold) {
+        c->test.verdict = Verdict::Absorbing;
+        continue;
+      }
       best = c;
       break;
     }
@@ -378,6 +390,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     out.steps.push_back(s);
   }
   out.final_gap = gap;
+  out.unexplained = unexplainedGap(gap, removeKnownErrors(imu, model.known));
   out.final_model = model;
   out.calibrations = eval.runs();
   return out;

@@ -82,6 +82,16 @@ nlohmann::json diagnosisToJson(const Diagnosis& d) {
   j["noise_terms"] = noise;
   if (d.has_motion) {
     j["gap_initial"] = gapJson(d.initial_gap);
+    if (d.unexplained) {
+      nlohmann::json signature = nlohmann::json::object();
+      for (const auto& [what, r] : d.unexplained->signature) signature[what] = r;
+      j["unexplained"] = {{"channel", d.unexplained->channel},
+                          {"segment", d.unexplained->segment},
+                          {"worst_ratio", d.unexplained->ratio},
+                          {"signature", signature}};
+    } else {
+      j["unexplained"] = nullptr;
+    }
     j["gap_final"] = gapJson(d.final_gap);
   }
   j["notes"] = d.notes;

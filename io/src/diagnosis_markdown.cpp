@@ -36,6 +36,18 @@ std::string valueText(const EffectTest& t) {
   return s.str();
 }
 
+// What the report's last column says of a candidate: the motion that would reveal an unobservable one, why
+// a significant one was refused.
+std::string verdictReason(const EffectTest& t) {
+  switch (t.verdict) {
+    case Verdict::Unobservable: return t.reveals;
+    case Verdict::Implausible: return "refused: the fit is beyond twice the size the effect can have";
+    case Verdict::Absorbing:
+      return "refused: it leaves the gap unexplained, and its LR divided by the misfit left is below the threshold";
+    default: return "";
+  }
+}
+
 const ResidualSeries* seriesOf(const ModelGap& g, const std::string& channel) {
   for (const auto& s : g.series)
     if (s.channel == channel) return &s;
@@ -112,7 +124,9 @@ std::string diagnosisMarkdown(const Diagnosis& d, const std::vector<NamedPlot>& 
   md << "# imucal diagnose\n\nInput: " << input << " (" << fmt(d.duration, 4) << " s"
      << (d.has_motion ? ", with a turn" : ", still only") << "; " << d.calibrations << " filter runs).\n\n";
   md << "## Effects found, in order\n\n";
-  if (d.steps.empty()) md << "Nothing significant: the model explains the data.\n\n";
+  if (d.steps.empty())
+    md << (d.unexplained ? "Nothing named: no candidate explains the gap (below).\n\n"
+                         : "Nothing significant: the model explains the data.\n\n");
   else {
     md << "| step | effect | value +- 1-sigma | LR (threshold) | gap before -> after |\n|---:|---|---|---:|---|\n";
     int k = 1;
@@ -135,6 +149,17 @@ std::string diagnosisMarkdown(const Diagnosis& d, const std::vector<NamedPlot>& 
     }
     md << '\n';
   }
+  if (d.unexplained) {
+    const Unexplained& u = *d.unexplained;
+    md << "## Unexplained\n\nNo candidate brings the worst gap under " << fmt(kExplainedGap, 2)
+       << " x what the model claims: `" << u.channel << "` (" << u.segment << ") is left at " << fmt(u.ratio)
+       << ". Whatever causes it is not in the library; named effects above may only absorb part of it.";
+    if (!u.signature.empty()) {
+      md << " The residual's size against the motion at the same times (correlation):";
+      for (const auto& [what, r] : u.signature) md << ' ' << what << ' ' << fmt(r, 2) << ';';
+    }
+    md << "\n\n";
+  }
   md << "The likelihood ratio (LR) is 2 x the gain in the filter's innovation log-likelihood; the threshold is the "
         "chi-square quantile at 1 % split over the candidates of the round (Bonferroni). The gap is the RMS of "
         "each channel's residual in units of what the model claims (1 when the model explains the data).\n\n";
@@ -147,9 +172,7 @@ std::string diagnosisMarkdown(const Diagnosis& d, const std::vector<NamedPlot>& 
       const bool valued = t.verdict != Verdict::Unobservable && t.verdict != Verdict::InModel && t.value.size() > 0;
       md << "| `" << t.id << "` | " << verdictName(t.verdict) << " | " << (valued ? valueText(t) : "-") << " | "
          << (t.dof > 0 ? fmt(t.lr, 3) + " (" + fmt(t.threshold, 3) + ")" : "-") << " | "
-         << (t.verdict == Verdict::Unobservable ? t.reveals
-                                                 : t.verdict == Verdict::Implausible ? "refused: the fit is beyond twice the size the effect can have"
-                                                                                     : "")
+         << verdictReason(t)
          << " |\n";
     }
     md << '\n';

@@ -49,6 +49,7 @@ TEST(DiagnoseTiming, AHiddenGyroLagIsNamedAndTheAccelerometerGapFallsToWhatTheMo
   std::cout << "  accelerometer gap (worst channel) " << before << " -> " << after << '\n';
   EXPECT_GT(before, 2.0);
   EXPECT_LT(after, 1.2);
+  EXPECT_FALSE(d.unexplained.has_value());
 }
 
 TEST(DiagnoseTiming, WithoutTheLagNothingIsNamedAndTheGapIsWhatTheModelClaims) {
@@ -58,6 +59,7 @@ TEST(DiagnoseTiming, WithoutTheLagNothingIsNamedAndTheGapIsWhatTheModelClaims) {
   std::cout << "  accelerometer gap (worst channel) " << gap << '\n';
   EXPECT_LT(gap, 1.2);
   EXPECT_GT(gap, 0.3);  // the claimed sigma is not inflated beyond what the residuals show
+  EXPECT_FALSE(d.unexplained.has_value());
 }
 
 }  // namespace

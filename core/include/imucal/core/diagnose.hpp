@@ -10,6 +10,7 @@
 #include "imucal/core/allan.hpp"
 #include "imucal/core/effect_library.hpp"
 #include "imucal/core/model_gap.hpp"
+#include "imucal/core/unexplained.hpp"
 
 namespace imucal {
 
@@ -30,7 +31,10 @@ struct DiagnoseOptions {
 
 // Implausible: significant, but the fitted size is beyond what the effect can physically have (more than
 // kImplausible x its plausible size): the likelihood is chasing something the library lacks.
-enum class Verdict { Significant, NotSignificant, Unobservable, InModel, Implausible };
+// Absorbing: significant under the model's noise, but it leaves the gap unexplained (kExplainedGap) and
+// its likelihood ratio, divided by the misfit left (the worst gap squared), is below the threshold: it
+// only absorbs part of something the library lacks.
+enum class Verdict { Significant, NotSignificant, Unobservable, InModel, Implausible, Absorbing };
 constexpr double kImplausible = 2.0;
 // Two effects whose estimates correlate beyond this on a recording are indistinguishable there: either
 // explains the gap (the step names one and reports the others as alternatives). Correlated less, they are
@@ -76,6 +80,8 @@ struct Diagnosis {
   std::vector<EffectTest> final_tests;  // the last likelihood round, in which nothing was significant
   std::vector<EffectTest> noise_tests;  // Allan-deviation tests of the noise terms
   ModelGap initial_gap, final_gap;
+  // Set when the final gap is not explained (kExplainedGap): what is left and its signature.
+  std::optional<Unexplained> unexplained;
   std::vector<AllanCurve> allan;        // empty without a long still stretch
   SensorHypothesis final_model;
   std::vector<std::string> notes;
