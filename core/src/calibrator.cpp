@@ -163,7 +163,8 @@ PassOutput runPass(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     e.sample = k;
     e.params = filter.estimatedParams();
     e.sigmas = paramSigmas(filter.covariance(), layout);
-    e.gravity_reading_cov = gravityReadingCovariance(filter, layout, config);
+    // Only the gap (model_gap.hpp) reads it, and only from a calibration that keeps its innovations.
+    if (keep_innovations) e.gravity_reading_cov = gravityReadingCovariance(filter, layout, config);
     const NavState nav = filter.estimatedNav();
     e.euler = quatToEuler(nav.q_nb);
     e.velocity = nav.v;

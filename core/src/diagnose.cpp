@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "imucal/core/noise_diagnosis.hpp"
 #include "imucal/core/profile_likelihood.hpp"
@@ -71,11 +72,15 @@ struct Candidate {
   double margin = -std::numeric_limits<double>::infinity();  // lr - threshold
 };
 
-bool plausible(const Effect& e, const EffectTest& t) {
+// The largest observable component's size as a share of what the effect can plausibly be.
+double plausibleShare(const Effect& e, const EffectTest& t) {
+  double worst = 0.0;
   for (Eigen::Index i = 0; i < t.value.size(); ++i)
-    if (t.observable[static_cast<std::size_t>(i)] && std::abs(t.value(i)) > kImplausible * e.plausible) return false;
-  return true;
+    if (t.observable[static_cast<std::size_t>(i)]) worst = std::max(worst, std::abs(t.value(i)) / e.plausible);
+  return worst;
 }
+
+bool plausible(const Effect& e, const EffectTest& t) { return !(plausibleShare(e, t) > kImplausible); }
 
 EffectTest blankTest(const Effect& e) {
   EffectTest t;
@@ -198,12 +203,6 @@ Candidate testProcessNoise(const Effect& e, const SensorHypothesis& model, doubl
 Candidate* chooseAmongIndistinguishable(Candidate* best, EffectTest& named, std::vector<Candidate>& candidates,
                                         DiagnoseStep& step, const SensorHypothesis& model, Evaluator& eval,
                                         double discriminating) {
-  const auto share = [](const Effect& e, const EffectTest& t) {
-    double worst = 0.0;
-    for (Eigen::Index i = 0; i < t.value.size(); ++i)
-      if (t.observable[static_cast<std::size_t>(i)]) worst = std::max(worst, std::abs(t.value(i)) / e.plausible);
-    return worst;
-  };
   Candidate* chosen = best;
   for (const auto& [id, rho] : step.correlated) {
     Candidate* c = nullptr;
@@ -214,7 +213,7 @@ Candidate* chooseAmongIndistinguishable(Candidate* best, EffectTest& named, std:
     EffectTest alternative = c->test;
     fillFromFit(alternative, refine(*c->effect, model, c->fit, eval));
     if (alternative.dof < c->test.dof || !plausible(*c->effect, alternative)) continue;
-    if (share(*c->effect, alternative) < share(*chosen->effect, named)) {
+    if (plausibleShare(*c->effect, alternative) < plausibleShare(*chosen->effect, named)) {
       step.alternatives.push_back(named);
       chosen = c;
       named = alternative;
@@ -319,6 +318,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     // The most significant one whose refined estimate stays plausible. Newton steps that run out of the
     // range where the quadratic model held, or into an unobservable direction, do not make a credible effect.
     Candidate* best = nullptr;
+    ModelGap best_gap;  // the gap with it added, from the check below
     EffectTest named;
     for (Candidate* c : significant) {
       if (step == options.max_steps) break;
@@ -337,12 +337,14 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
       // part of something the library lacks does not.
       SensorHypothesis with = model;
       c->effect->set(with, named.value);
-      const double left = eval.gap(with).worst();
+      ModelGap with_gap = eval.gap(with);
+      const double left = with_gap.worst();
       if (left > kExplainedGap && c->test.lr / (left * left) <= c->test.threshold) {
         c->test.verdict = Verdict::Absorbing;
         continue;
       }
       best = c;
+      best_gap = std::move(with_gap);
       break;
     }
     std::vector<EffectTest> tests;
@@ -355,6 +357,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
     DiagnoseStep s;
     s.tests = tests;
     s.gap_before = gap;
+    const Candidate* const checked = best;
     const Effect& e = *best->effect;
     if (e.kind == EffectKind::Deterministic) {
       // The correlation of its estimate with each other observable 1-component effect, from one more run
@@ -382,7 +385,7 @@ Diagnosis diagnose(const std::vector<ImuSample>& imu, const std::vector<HeadingS
                                           chiSquareQuantile(options.family_alpha, 1));
     }
     best->effect->set(model, named.value);
-    gap = eval.gap(model);
+    gap = best == checked ? std::move(best_gap) : eval.gap(model);
     named.lr = 2.0 * (gap.log_likelihood - l0);
     named.verdict = Verdict::Significant;
     s.effect = named;

@@ -156,6 +156,7 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
     Vec3 measured = Vec3::Zero(), simulated = Vec3::Zero();
     Mat3 known = Mat3::Zero();  // time-weighted mean of the filter's own uncertainty of the reading
     bool all_still = true;
+    Mat3 c = quatAt(start, epochOf(start)).toRotationMatrix();  // at sample k, carried from the interval before
     for (std::size_t k = start; k < end; ++k) {
       const std::size_t j = epochOf(k);  // the filter step sample k belongs to
       TriadErrors accel, gyro;
@@ -163,7 +164,6 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
       const double dt = imu[k + 1].t - imu[k].t;
       const Vec3 w_a = gyro.remove(imu[k].gyro), w_b = gyro.remove(imu[k + 1].gyro);
       const Vec3 w = 0.5 * (w_a + w_b);
-      const Mat3 c = quatAt(k, j).toRotationMatrix();
       const Mat3 c_next = quatAt(k + 1, epochOf(k + 1)).toRotationMatrix();
       const Vec3 w_nb = w - c.transpose() * w_ie;
       const Vec3 alpha = (w_b - w_a) / dt;
@@ -175,6 +175,7 @@ ModelGap modelGap(const std::vector<ImuSample>& imu, const CalibrationResult& re
       measured += dt * 0.5 * (imu[k].accel + imu[k + 1].accel);
       known += dt * history[j].gravity_reading_cov;
       all_still = all_still && history[j].still;
+      c = c_next;
     }
     const Vec3 accel_residual = (measured - simulated) / span;
     const double t_mid = 0.5 * (imu[start].t + imu[end].t);

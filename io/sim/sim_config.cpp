@@ -1,10 +1,10 @@
 #include <cmath>
 
-#include "imucal/core/param_registry.hpp"
 #include "imucal/core/units.hpp"
 #include "imucal/io/sim_formats.hpp"
 #include "imucal/io/config_sections.hpp"
 #include "imucal/io/errors.hpp"
+#include "imucal/io/param_units.hpp"
 #include "imucal/io/yaml_fields.hpp"
 
 namespace imucal::io {
@@ -117,27 +117,31 @@ void refuseRenamed(YamlSection& s, const std::string& old_key, const std::string
   if (s.has(old_key)) s.fail(old_key, "renamed " + new_key + " (" + unit + ", as calibrate reports it): " + conversion);
 }
 
-double unitOf(ParamBlock block) { return blockInfo(block).si_per_human; }
+// A triad block's three values (or one for all) under its simulator key, in its registry unit.
+Vec3 readTriad(YamlSection& s, ParamBlock block, const Vec3& fallback, const Range& range = Range::any()) {
+  const double u = paramUnit(block).factor;
+  return s.vector3(simKey(block), fallback / u, true, range) * u;
+}
 
-// Scale (ppm) and misalignment (mrad, any off-diagonal term: the simulator may rotate a triad).
+// Scale (ppm, at most 50 %) and misalignment (mrad, any off-diagonal term: the simulator may rotate a triad).
 void readGain(YamlSection& s, ParamBlock scale, ParamBlock misalignment, TriadErrors& e) {
-  const double k = unitOf(scale), m = unitOf(misalignment);
-  e.scale = s.vector3(simKey(scale), e.scale / k, true, Range::between(-0.5 / k, 0.5 / k)) * k;
+  const double k = paramUnit(scale).factor, m = paramUnit(misalignment).factor;
+  e.scale = readTriad(s, scale, e.scale, Range::between(-0.5 / k, 0.5 / k));
   e.misalignment = s.offDiagonal3(simKey(misalignment), e.misalignment / m) * m;
 }
 
 // vrw/arw, bias_instability, bias_correlation_s, bias_random_walk in the noise terms' units.
 void readNoise(YamlSection& s, bool gyro, sim::TriadNoise& n) {
   const auto read = [&](const std::string& name, NoiseTerm term, const Vec3& value) -> Vec3 {
-    const HumanUnit& u = noiseUnit(gyro, term);
-    return s.vector3(name + u.suffix, value / u.factor, true, Range::nonNegative()) * u.factor;
+    const double u = noiseUnit(gyro, term).factor;
+    return s.vector3(noiseKey(name, gyro, term), value / u, true, Range::nonNegative()) * u;
   };
   n.white = read(gyro ? "arw_" : "vrw_", NoiseTerm::White, n.white);
   n.bias_instability = read("bias_instability_", NoiseTerm::BiasInstability, n.bias_instability);
   n.bias_correlation_time = s.number("bias_correlation_s", n.bias_correlation_time, Range::positive());
   if (!gyro) {
-    const HumanUnit& u = noiseUnit(gyro, NoiseTerm::RandomWalk);
-    refuseRenamed(s, "bias_random_walk_ug_per_sqrt_s", "bias_random_walk_" + u.suffix, u.human, "multiply the values by 60");
+    refuseRenamed(s, "bias_random_walk_ug_per_sqrt_s", noiseKey("bias_random_walk_", gyro, NoiseTerm::RandomWalk),
+                  noiseUnit(gyro, NoiseTerm::RandomWalk).human, "multiply the values by 60");
   }
   n.bias_random_walk = read("bias_random_walk_", NoiseTerm::RandomWalk, n.bias_random_walk);
 }
@@ -146,7 +150,7 @@ void readAccel(YamlSection s, TriadErrors& e, sim::TriadNoise& n) {
   const double g = units::kStandardGravity;
   refuseRenamed(s, "bias_mg", simKey(ParamBlock::AccelBias), blockInfo(ParamBlock::AccelBias).human_unit,
                 "multiply the values by 1000");
-  e.bias = s.vector3(simKey(ParamBlock::AccelBias), e.bias / unitOf(ParamBlock::AccelBias), true) * unitOf(ParamBlock::AccelBias);
+  e.bias = readTriad(s, ParamBlock::AccelBias, e.bias);
   readGain(s, ParamBlock::AccelScale, ParamBlock::AccelMisalignment, e);
   readNoise(s, false, n);
   n.quantization = s.number("quantization_mg", n.quantization / units::milli_g, Range::nonNegative()) * units::milli_g;
@@ -156,7 +160,7 @@ void readAccel(YamlSection s, TriadErrors& e, sim::TriadNoise& n) {
 
 void readGyro(YamlSection s, ImuErrorModel& model, sim::TriadNoise& n) {
   TriadErrors& e = model.gyro;
-  e.bias = s.vector3(simKey(ParamBlock::GyroBias), e.bias / unitOf(ParamBlock::GyroBias), true) * unitOf(ParamBlock::GyroBias);
+  e.bias = readTriad(s, ParamBlock::GyroBias, e.bias);
   readGain(s, ParamBlock::GyroScale, ParamBlock::GyroMisalignment, e);
   readNoise(s, true, n);
   n.quantization = s.number("quantization_deg_per_s", n.quantization / units::deg_per_s, Range::nonNegative()) *
@@ -165,10 +169,11 @@ void readGyro(YamlSection s, ImuErrorModel& model, sim::TriadNoise& n) {
       s.number("saturation_deg_per_s", n.saturation / units::deg_per_s, Range::nonNegative()) * units::deg_per_s;
   refuseRenamed(s, "g_sensitivity_deg_per_h_per_g", simKey(ParamBlock::GyroGSensitivity),
                 blockInfo(ParamBlock::GyroGSensitivity).human_unit, "divide the values by 3600");
-  const double g_sens = unitOf(ParamBlock::GyroGSensitivity);
-  model.gyro_g_sensitivity = s.matrix3(simKey(ParamBlock::GyroGSensitivity), model.gyro_g_sensitivity / g_sens) * g_sens;
+  const double g_sens = paramUnit(ParamBlock::GyroGSensitivity).factor;
+  model.gyro_g_sensitivity =
+      s.matrix3(simKey(ParamBlock::GyroGSensitivity), model.gyro_g_sensitivity / g_sens) * g_sens;
   // Positive: the gyro's samples lag the accelerometer's.
-  const double offset = unitOf(ParamBlock::GyroTimeOffset);
+  const double offset = paramUnit(ParamBlock::GyroTimeOffset).factor;
   model.gyro_time_offset = s.number(simKey(ParamBlock::GyroTimeOffset), model.gyro_time_offset / offset,
                                     Range::between(-0.1 / offset, 0.1 / offset)) *
                            offset;

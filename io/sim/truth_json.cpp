@@ -45,17 +45,15 @@ json motionJson(const sim::MotionConfig& m) {
             {"components", m.jitter.components}}}};
 }
 
-double unitOf(ParamBlock block) { return blockInfo(block).si_per_human; }
-std::string noiseKey(const std::string& name, bool gyro, NoiseTerm term) { return name + noiseUnit(gyro, term).suffix; }
 json noiseVec(const Vec3& v, bool gyro, NoiseTerm term) { return vec(v, noiseUnit(gyro, term).factor); }
 
 json accelJson(const TriadErrors& e, const sim::TriadNoise& n) {
   const double g = units::kStandardGravity;
-  return {{simKey(ParamBlock::AccelBias), vec(e.bias, unitOf(ParamBlock::AccelBias))},
+  return {{simKey(ParamBlock::AccelBias), vec(e.bias, paramUnit(ParamBlock::AccelBias).factor)},
           {"bias_m_per_s2", vec(e.bias)},
-          {simKey(ParamBlock::AccelScale), vec(e.scale, unitOf(ParamBlock::AccelScale))},
+          {simKey(ParamBlock::AccelScale), vec(e.scale, paramUnit(ParamBlock::AccelScale).factor)},
           {"scale", vec(e.scale)},
-          {simKey(ParamBlock::AccelMisalignment), mat(e.misalignment, unitOf(ParamBlock::AccelMisalignment))},
+          {simKey(ParamBlock::AccelMisalignment), mat(e.misalignment, paramUnit(ParamBlock::AccelMisalignment).factor)},
           {"misalignment_rad", mat(e.misalignment)},
           {noiseKey("vrw_", false, NoiseTerm::White), noiseVec(n.white, false, NoiseTerm::White)},
           {"vrw_m_per_s_per_sqrt_s", vec(n.white)},
@@ -74,11 +72,11 @@ json accelJson(const TriadErrors& e, const sim::TriadNoise& n) {
 
 json gyroJson(const ImuErrorModel& model, const sim::TriadNoise& n) {
   const TriadErrors& e = model.gyro;
-  return {{simKey(ParamBlock::GyroBias), vec(e.bias, unitOf(ParamBlock::GyroBias))},
+  return {{simKey(ParamBlock::GyroBias), vec(e.bias, paramUnit(ParamBlock::GyroBias).factor)},
           {"bias_rad_per_s", vec(e.bias)},
-          {simKey(ParamBlock::GyroScale), vec(e.scale, unitOf(ParamBlock::GyroScale))},
+          {simKey(ParamBlock::GyroScale), vec(e.scale, paramUnit(ParamBlock::GyroScale).factor)},
           {"scale", vec(e.scale)},
-          {simKey(ParamBlock::GyroMisalignment), mat(e.misalignment, unitOf(ParamBlock::GyroMisalignment))},
+          {simKey(ParamBlock::GyroMisalignment), mat(e.misalignment, paramUnit(ParamBlock::GyroMisalignment).factor)},
           {"misalignment_rad", mat(e.misalignment)},
           {noiseKey("arw_", true, NoiseTerm::White), noiseVec(n.white, true, NoiseTerm::White)},
           {"arw_rad_per_sqrt_s", vec(n.white)},
@@ -93,7 +91,8 @@ json gyroJson(const ImuErrorModel& model, const sim::TriadNoise& n) {
           {"quantization_rad_per_s", n.quantization},
           {"saturation_deg_per_s", n.saturation / units::deg_per_s},
           {"saturation_rad_per_s", n.saturation},
-          {simKey(ParamBlock::GyroGSensitivity), mat(model.gyro_g_sensitivity, unitOf(ParamBlock::GyroGSensitivity))},
+          {simKey(ParamBlock::GyroGSensitivity),
+           mat(model.gyro_g_sensitivity, paramUnit(ParamBlock::GyroGSensitivity).factor)},
           {"g_sensitivity_rad_per_s_per_m_per_s2", mat(model.gyro_g_sensitivity)}};
 }
 

@@ -18,7 +18,7 @@ namespace imucal::io::config_keys {
 template <class Visitor>
 void noise(Visitor& v, NoiseConfig& n) {
   const Range positive = Range::positive(), non_negative = Range::nonNegative();
-  const auto key = [](const std::string& name, bool gyro, NoiseTerm term) { return name + noiseUnit(gyro, term).suffix; };
+  const auto key = noiseKey;
   const auto factor = [](bool gyro, NoiseTerm term) { return noiseUnit(gyro, term).factor; };
   v.number(key("vrw_", false, NoiseTerm::White), n.accel_white, positive, factor(false, NoiseTerm::White));
   v.number(key("arw_", true, NoiseTerm::White), n.gyro_white, positive, factor(true, NoiseTerm::White));

@@ -8,6 +8,8 @@ namespace imucal::io {
 
 ParamUnit paramUnit(ParamBlock block) { return blockInfo(block).unit(); }
 
+std::string noiseKey(const std::string& name, bool gyro, NoiseTerm term) { return name + noiseUnit(gyro, term).suffix; }
+
 ParamUnit paramUnit(const std::string& name) {
   if (const auto ref = findParam(name)) return paramUnit(ref->block);
   return {"si", "si", "si", 1.0};

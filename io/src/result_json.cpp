@@ -86,7 +86,7 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
   }
   const WhiteNoiseEstimate& m = result.noise_measured;
   // Keys and units as the calibrate config's noise section has them (human_unit.hpp).
-  const auto key = [](const std::string& name, bool gyro, NoiseTerm term) { return name + noiseUnit(gyro, term).suffix; };
+  const auto key = noiseKey;
   const auto human = [](double si, bool gyro, NoiseTerm term) { return si / noiseUnit(gyro, term).factor; };
   const auto triad = [](const Vec3& v, bool gyro, NoiseTerm term) {
     const double unit = noiseUnit(gyro, term).factor;
@@ -115,7 +115,8 @@ nlohmann::json resultToJson(const CalibrationResult& result) {
   if (w.valid) {
     json walk = {{"still_s", w.still_seconds}};
     walk[key("accel_walk_", false, NoiseTerm::RandomWalk)] = triad(w.accel_walk, false, NoiseTerm::RandomWalk);
-    walk[key("accel_walk_sigma_", false, NoiseTerm::RandomWalk)] = triad(w.accel_walk_sigma, false, NoiseTerm::RandomWalk);
+    walk[key("accel_walk_sigma_", false, NoiseTerm::RandomWalk)] =
+        triad(w.accel_walk_sigma, false, NoiseTerm::RandomWalk);
     walk[key("accel_instability_", false, NoiseTerm::BiasInstability)] =
         triad(w.accel_instability, false, NoiseTerm::BiasInstability);
     walk[key("gyro_walk_", true, NoiseTerm::RandomWalk)] = triad(w.gyro_walk, true, NoiseTerm::RandomWalk);

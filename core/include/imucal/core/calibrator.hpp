@@ -31,7 +31,8 @@ struct EpochRecord {
   Vec3 position = Vec3::Zero();
   bool still = false;         // static detector's verdict
   // Covariance of what the accelerometer reads of gravity, from the filter's attitude and accelerometer
-  // uncertainty at this epoch (m/s^2)^2: how well the filter itself could re-simulate the reading.
+  // uncertainty at this epoch (m/s^2)^2: how well the filter itself could re-simulate the reading. Filled
+  // where the calibration keeps its innovations (CalibrateOptions::keep_innovations), zero elsewhere.
   Mat3 gravity_reading_cov = Mat3::Zero();
 };
 

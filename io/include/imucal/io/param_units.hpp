@@ -10,6 +10,9 @@ namespace imucal::io {
 using ParamUnit = HumanUnit;
 
 ParamUnit paramUnit(ParamBlock block);
+// A noise term's key in the config, result and truth files: `name` and its unit's suffix
+// ("vrw_" -> "vrw_m_per_s_per_sqrt_h").
+std::string noiseKey(const std::string& name, bool gyro, NoiseTerm term);
 // By the parameter's registry name; a name the registry does not define stays in SI (suffix "si").
 ParamUnit paramUnit(const std::string& name);
 
